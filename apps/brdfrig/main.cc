@@ -1,0 +1,27 @@
+// brdfrig: one command, one subcommand per job. Each subcommand is registered by a
+// Register*Commands function (apps/brdfrig/*_commands.cc) that only parses options and calls
+// a library function; errors a user can fix are printed as one clear line, exit code 1.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "common/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"brdfrig: measure how a flat material reflects light"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("brdfrig ") + BRDFRIG_VERSION);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const brdfrig::Error& e) {
+    std::fprintf(stderr, "brdfrig: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "brdfrig: internal error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

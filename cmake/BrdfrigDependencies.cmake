@@ -1,0 +1,33 @@
+# Every third-party dependency is found here, from Debian 12 packages
+# (scripts/packages.txt lists them; scripts/setup.sh installs them).
+find_package(Threads REQUIRED)
+find_package(PkgConfig REQUIRED)
+
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(Ceres REQUIRED)
+find_package(OpenCVModules REQUIRED COMPONENTS core imgproc imgcodecs calib3d photo)
+find_package(OpenEXR REQUIRED CONFIG)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(SQLite3 REQUIRED)
+find_package(OpenSSL REQUIRED)
+find_package(tinyobjloader REQUIRED)
+
+pkg_check_modules(GPHOTO2 REQUIRED IMPORTED_TARGET libgphoto2)
+pkg_check_modules(MODBUS REQUIRED IMPORTED_TARGET libmodbus)
+pkg_check_modules(LIBUSB REQUIRED IMPORTED_TARGET libusb-1.0)
+pkg_check_modules(LIBRAW REQUIRED IMPORTED_TARGET libraw_r)
+pkg_check_modules(MICROHTTPD REQUIRED IMPORTED_TARGET libmicrohttpd)
+pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
+pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET glfw3)
+
+if(BRDFRIG_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()
+if(BRDFRIG_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

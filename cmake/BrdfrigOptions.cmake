@@ -1,0 +1,33 @@
+# Compiler flags shared by every target of the project: warnings (as errors in CI) and sanitizers.
+add_library(brdfrig_options INTERFACE)
+add_library(brdfrig::options ALIAS brdfrig_options)
+target_compile_options(brdfrig_options INTERFACE -Wall -Wextra -Wpedantic -Wshadow
+                                                 -Wnon-virtual-dtor -Wno-missing-field-initializers)
+# GCC 12's -Wrestrict/-Wstringop-overflow fire on std::string concatenation inlined at -O3
+# (GCC bug 105329/105651): false positives in libstdc++, not in our code.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+  target_compile_options(brdfrig_options INTERFACE -Wno-restrict -Wno-stringop-overflow)
+endif()
+if(BRDFRIG_WERROR)
+  target_compile_options(brdfrig_options INTERFACE -Werror)
+endif()
+if(BRDFRIG_SANITIZE)
+  target_compile_options(brdfrig_options INTERFACE -fsanitize=address,undefined
+                                                   -fno-sanitize-recover=undefined
+                                                   -fno-omit-frame-pointer)
+  target_link_options(brdfrig_options INTERFACE -fsanitize=address,undefined)
+endif()
+
+# brdfrig_add_library(NAME SOURCES ... DEPS ...): the one way a folder declares its library,
+# exported as brdfrig::NAME with the source root on the include path (#include "brdf/...").
+function(brdfrig_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(brdfrig_${name} STATIC ${ARG_SOURCES})
+  add_library(brdfrig::${name} ALIAS brdfrig_${name})
+  target_include_directories(brdfrig_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(brdfrig_${name} PUBLIC brdfrig::options ${ARG_DEPS}
+                                        PRIVATE ${ARG_PRIVATE_DEPS})
+  target_compile_definitions(brdfrig_${name} PRIVATE
+                             BRDFRIG_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                             BRDFRIG_VERSION="${PROJECT_VERSION}")
+endfunction()

@@ -1,0 +1,172 @@
+#include "common/yaml_reader.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace brdfrig {
+namespace {
+
+std::string ChildPath(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+}  // namespace
+
+YamlNode LoadYamlFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path, "cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return LoadYamlString(text.str(), path);
+}
+
+YamlNode LoadYamlString(const std::string& text, const std::string& source_name) {
+  auto file = std::make_shared<const std::string>(source_name);
+  try {
+    YAML::Node root = YAML::Load(text);
+    if (!root.IsMap()) {
+      throw FileError(source_name, 1, 1, "expected a mapping of keys at the top level");
+    }
+    return YamlNode(root, file, "");
+  } catch (const YAML::Exception& e) {
+    throw FileError(source_name, e.mark.line + 1, e.mark.column + 1, e.msg);
+  }
+}
+
+YamlNode::YamlNode(YAML::Node node, std::shared_ptr<const std::string> file, std::string path)
+    : node_(std::move(node)),
+      file_(std::move(file)),
+      path_(std::move(path)),
+      used_keys_(std::make_shared<std::set<std::string>>()) {}
+
+int YamlNode::line() const { return node_.Mark().line + 1; }
+
+void YamlNode::Fail(const std::string& message) const {
+  const YAML::Mark mark = node_.Mark();
+  const std::string prefix = path_.empty() ? "" : path_ + ": ";
+  throw FileError(*file_, mark.line + 1, mark.column + 1, prefix + message);
+}
+
+bool YamlNode::Has(const std::string& key) const { return IsMap() && node_[key].IsDefined(); }
+
+std::optional<YamlNode> YamlNode::Optional(const std::string& key) const {
+  if (!IsMap()) Fail("expected a mapping with key '" + key + "'");
+  used_keys_->insert(key);
+  const YAML::Node child = node_[key];
+  if (!child.IsDefined() || child.IsNull()) return std::nullopt;
+  return YamlNode(child, file_, ChildPath(path_, key));
+}
+
+YamlNode YamlNode::Required(const std::string& key) const {
+  std::optional<YamlNode> child = Optional(key);
+  if (!child) Fail("missing required key '" + key + "'");
+  return *child;
+}
+
+double YamlNode::AsDouble() const {
+  if (!IsScalar()) Fail("expected a number");
+  double value = 0;
+  if (!YAML::convert<double>::decode(node_, value)) {
+    Fail("expected a number, got '" + node_.Scalar() + "'");
+  }
+  if (!std::isfinite(value)) Fail("expected a finite number, got '" + node_.Scalar() + "'");
+  return value;
+}
+
+int YamlNode::AsInt() const {
+  if (!IsScalar()) Fail("expected an integer");
+  int value = 0;
+  if (!YAML::convert<int>::decode(node_, value)) {
+    Fail("expected an integer, got '" + node_.Scalar() + "'");
+  }
+  return value;
+}
+
+bool YamlNode::AsBool() const {
+  if (!IsScalar()) Fail("expected true or false");
+  bool value = false;
+  if (!YAML::convert<bool>::decode(node_, value)) {
+    Fail("expected true or false, got '" + node_.Scalar() + "'");
+  }
+  return value;
+}
+
+std::string YamlNode::AsString() const {
+  if (!IsScalar()) Fail("expected a string");
+  return node_.Scalar();
+}
+
+std::vector<YamlNode> YamlNode::Elements() const {
+  if (!IsSequence()) Fail("expected a list");
+  std::vector<YamlNode> out;
+  for (std::size_t i = 0; i < node_.size(); ++i) {
+    out.emplace_back(node_[i], file_, path_ + "[" + std::to_string(i) + "]");
+  }
+  return out;
+}
+
+std::vector<double> YamlNode::AsDoubles() const {
+  std::vector<double> out;
+  for (const YamlNode& item : Elements()) out.push_back(item.AsDouble());
+  return out;
+}
+
+std::vector<std::string> YamlNode::Keys() const {
+  if (!IsMap()) Fail("expected a mapping");
+  std::vector<std::string> keys;
+  for (const auto& kv : node_) keys.push_back(kv.first.Scalar());
+  return keys;
+}
+
+double YamlNode::Get(const std::string& key, double fallback) const {
+  auto child = Optional(key);
+  return child ? child->AsDouble() : fallback;
+}
+int YamlNode::Get(const std::string& key, int fallback) const {
+  auto child = Optional(key);
+  return child ? child->AsInt() : fallback;
+}
+bool YamlNode::Get(const std::string& key, bool fallback) const {
+  auto child = Optional(key);
+  return child ? child->AsBool() : fallback;
+}
+std::string YamlNode::Get(const std::string& key, const std::string& fallback) const {
+  auto child = Optional(key);
+  return child ? child->AsString() : fallback;
+}
+std::string YamlNode::Get(const std::string& key, const char* fallback) const {
+  return Get(key, std::string(fallback));
+}
+
+double YamlNode::InRange(double value, double lo, double hi) const {
+  if (!(value >= lo && value <= hi)) {
+    std::ostringstream msg;
+    msg << "must be in [" << lo << ", " << hi << "], got " << value;
+    Fail(msg.str());
+  }
+  return value;
+}
+
+double YamlNode::Positive(double value) const {
+  if (!(value > 0)) {
+    std::ostringstream msg;
+    msg << "must be > 0, got " << value;
+    Fail(msg.str());
+  }
+  return value;
+}
+
+void YamlNode::Finish() const {
+  if (!IsMap()) return;
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.Scalar();
+    if (!used_keys_->count(key)) {
+      const YAML::Mark mark = kv.first.Mark();
+      throw FileError(*file_, mark.line + 1, mark.column + 1,
+                      "unknown key '" + ChildPath(path_, key) + "'");
+    }
+  }
+}
+
+}  // namespace brdfrig
