@@ -1,0 +1,87 @@
+// The rig's nominal geometry: where the camera and the light are for a given set of axis
+// positions, the camera intrinsics, and the target (paper mask with its cut-out). The world has
+// the sample plane at z = 0 with normal +z and the cut-out centred at the origin.
+//
+// One description serves the simulator (scene.yaml's `rig:` section), the plan check and the
+// reconstruction's starting values (rig.yaml's `geometry:` section): parsed by
+// ParseRigGeometry. A sample tilt is modelled as the inverse rotation of camera and light about
+// the same pivot, so the sample plane stays z = 0.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/yaml_reader.h"
+
+namespace brdfrig::rig {
+
+using Vec3 = Eigen::Vector3d;
+using AxisPositions = std::map<std::string, double>;  // axis name -> angle (radians)
+
+// Pinhole camera with radial distortion (OpenCV convention: x right, y down, z forward).
+struct Intrinsics {
+  int width = 0, height = 0;   // pixels
+  double fx = 0, fy = 0;       // focal length in pixels
+  double cx = 0, cy = 0;       // principal point in pixels
+  double k1 = 0, k2 = 0;       // radial distortion (OpenCV model); 0 = none
+};
+
+// A rigid transform x_in_camera = camera_from_world * x_in_world.
+struct CameraPose {
+  Eigen::Isometry3d camera_from_world = Eigen::Isometry3d::Identity();
+  Vec3 CenterInWorld() const { return camera_from_world.inverse().translation(); }
+};
+
+struct RotationAxis {
+  std::string name;
+  Vec3 pivot = Vec3::Zero();       // a point on the axis (metres, world)
+  Vec3 direction = Vec3::UnitY();  // unit axis direction; positive angle = right-hand rule
+  double min = -M_PI, max = M_PI;  // travel limits (radians)
+  enum class Moves { kCamera, kLight, kSample } moves = Moves::kLight;
+};
+
+// The paper mask: a near-Lambertian reference of known albedo with a rectangular cut-out.
+struct TargetGeometry {
+  double cutout_width = 0.1;   // metres, along world x
+  double cutout_height = 0.1;  // metres, along world y
+  double paper_width = 0.3;    // metres (outer size of the paper)
+  double paper_height = 0.3;
+  double paper_albedo = 0.8;   // diffuse reflectance of the paper (grey)
+};
+
+struct RigGeometry {
+  Intrinsics intrinsics;
+  // Camera at rest (every axis at 0): its centre and the point it looks at (world), and the
+  // world direction that appears "up" in the image.
+  Vec3 camera_position = {0, -0.35, 0.35};
+  Vec3 camera_look_at = Vec3::Zero();
+  Vec3 camera_up = Vec3::UnitZ();
+  Vec3 light_position = {0, 0.35, 0.35};  // light at rest (world, metres)
+  double light_intensity = 1.0;           // radiant intensity (W/sr, or relative units)
+  std::vector<RotationAxis> axes;         // applied in list order
+  TargetGeometry target;
+
+  const RotationAxis* FindAxis(const std::string& name) const;
+
+  // Pose of the camera and position of the light for the given axis angles. Axes not named in
+  // `positions` are at 0. Throws brdfrig::Error for an unknown axis or one outside its limits.
+  CameraPose CameraAt(const AxisPositions& positions) const;
+  Vec3 LightAt(const AxisPositions& positions) const;
+};
+
+// Parses the geometry section (see docs/rig_geometry.md for the keys). Angles in the file are
+// in degrees (the only place degrees are accepted); they are radians everywhere in code.
+RigGeometry ParseRigGeometry(const YamlNode& node);
+
+// Projects a world point to pixel coordinates (with distortion). Returns false when the point is
+// behind the camera.
+bool ProjectToPixel(const Intrinsics& k, const CameraPose& pose, const Vec3& x_in_world,
+                    Eigen::Vector2d* pixel);
+
+// Unit ray direction in world space through a pixel (undistorted first), and the camera centre.
+Vec3 PixelRayInWorld(const Intrinsics& k, const CameraPose& pose, const Eigen::Vector2d& pixel);
+
+}  // namespace brdfrig::rig
