@@ -23,9 +23,9 @@ class Lambert : public Brdf {
 // Microfacet specular lobes share this form: diffuse/pi + D·G·F / (4 cos_i cos_o),
 // with Schlick Fresnel from the normal-incidence reflectance f0.
 struct MicrofacetParams {
-  Rgb diffuse = Rgb::Zero();      // Lambertian albedo added under the lobe
-  Rgb f0 = Rgb::Constant(0.04);   // specular reflectance at normal incidence
-  double alpha = 0.2;             // roughness (GGX alpha or Beckmann m), > 0
+  Rgb diffuse = Rgb::Zero();     // Lambertian albedo added under the lobe
+  Rgb f0 = Rgb::Constant(0.04);  // specular reflectance at normal incidence
+  double alpha = 0.2;            // roughness (GGX alpha or Beckmann m), > 0
 };
 
 // GGX / Trowbridge–Reitz distribution with the separable Smith G (Walter et al. 2007).

@@ -18,17 +18,17 @@ namespace brdfrig::brdf {
 
 // How well one slice is supported by its data (written by the fit; optional on read).
 struct SliceDiagnostics {
-  double residual = 0;                       // robust RMS of the fit residuals
-  int sample_count = 0;                      // BRDF samples used
-  double theta_min = 0, theta_max = 0;       // theta range covered by the samples (radians)
+  double residual = 0;                            // robust RMS of the fit residuals
+  int sample_count = 0;                           // BRDF samples used
+  double theta_min = 0, theta_max = 0;            // theta range covered by the samples (radians)
   std::array<std::array<double, 4>, 3> stddev{};  // per channel: A1, A2, h, x0 (NaN = unknown)
   bool has_stddev = false;
-  std::vector<std::string> warnings;         // e.g. "A2 unobserved: shared across slices"
+  std::vector<std::string> warnings;  // e.g. "A2 unobserved: shared across slices"
 };
 
 struct Material {
-  std::vector<Slice> slices;                 // sorted by theta_in
-  std::vector<SliceDiagnostics> diagnostics; // empty, or one per slice
+  std::vector<Slice> slices;                  // sorted by theta_in
+  std::vector<SliceDiagnostics> diagnostics;  // empty, or one per slice
   nlohmann::json provenance = nlohmann::json::object();
 
   SliceModel Model() const { return SliceModel(slices); }

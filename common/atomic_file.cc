@@ -13,8 +13,7 @@
 namespace brdfrig {
 namespace {
 
-[[noreturn]] void ThrowSystem(const std::string& what, const std::filesystem::path& path,
-                              int err) {
+[[noreturn]] void ThrowSystem(const std::string& what, const std::filesystem::path& path, int err) {
   throw Error(what + " '" + path.string() + "': " + std::strerror(err));
 }
 

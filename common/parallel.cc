@@ -8,9 +8,7 @@
 
 namespace brdfrig {
 
-int DefaultThreadCount() {
-  return std::max(1u, std::thread::hardware_concurrency());
-}
+int DefaultThreadCount() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 void ParallelFor(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body,
                  int threads) {

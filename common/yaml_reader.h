@@ -42,7 +42,7 @@ class YamlNode {
   int AsInt() const;
   bool AsBool() const;
   std::string AsString() const;
-  std::vector<double> AsDoubles() const;  // a sequence of numbers
+  std::vector<double> AsDoubles() const;   // a sequence of numbers
   std::vector<YamlNode> Elements() const;  // sequence items
   std::vector<std::string> Keys() const;   // map keys in file order
 
@@ -55,7 +55,7 @@ class YamlNode {
 
   // Rules on a number read from this node.
   double InRange(double value, double lo, double hi) const;  // lo <= value <= hi
-  double Positive(double value) const;                        // value > 0
+  double Positive(double value) const;                       // value > 0
 
   // Throws a FileError for the first key of this map that was never read.
   void Finish() const;

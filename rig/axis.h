@@ -11,9 +11,9 @@ enum class AxisState { kReady, kMoving, kAlarm, kDisconnected };
 
 struct AxisStatus {
   AxisState state = AxisState::kReady;
-  double position = 0;   // radians, as read back from the drive
-  int alarm_code = 0;    // drive's alarm code when state == kAlarm
-  std::string message;   // human-readable detail
+  double position = 0;  // radians, as read back from the drive
+  int alarm_code = 0;   // drive's alarm code when state == kAlarm
+  std::string message;  // human-readable detail
 };
 
 struct MoveReport {

@@ -13,7 +13,7 @@ namespace brdfrig::rig {
 
 struct CameraInfo {
   std::string model;
-  std::string port;      // e.g. "usb:001,004", "disk:/path", "sim"
+  std::string port;  // e.g. "usb:001,004", "disk:/path", "sim"
   std::string serial;
   std::string firmware;
   std::vector<double> shutter_speeds;  // offered exposure times in seconds (may be empty)
@@ -21,18 +21,28 @@ struct CameraInfo {
 
 // One file the camera produced for a shot (RAW+JPEG gives two).
 struct Frame {
-  std::string file_name;          // camera's name, e.g. "IMG_0042.JPG"; extension tells format
-  std::vector<std::byte> bytes;   // the file's content
-  double exposure_s = 0;          // exposure actually used
-  double iso = 0;                 // 0 when unknown
-  double exposure_duration_s = 0; // time the shot took (device clock; virtual for the sim)
-  double download_duration_s = 0; // time the download took
+  std::string file_name;           // camera's name, e.g. "IMG_0042.JPG"; extension tells format
+  std::vector<std::byte> bytes;    // the file's content
+  double exposure_s = 0;           // exposure actually used
+  double iso = 0;                  // 0 when unknown
+  double exposure_duration_s = 0;  // time the shot took (device clock; virtual for the sim)
+  double download_duration_s = 0;  // time the download took
 };
 
 class CameraError : public Error {
  public:
-  enum class Kind { kNotFound, kClaimed, kBusy, kTimeout, kGone, kStorageFull, kUnsupported,
-                    kIo, kBadSettings, kOther };
+  enum class Kind {
+    kNotFound,
+    kClaimed,
+    kBusy,
+    kTimeout,
+    kGone,
+    kStorageFull,
+    kUnsupported,
+    kIo,
+    kBadSettings,
+    kOther
+  };
   CameraError(Kind kind, int code, const std::string& message)
       : Error(message), kind_(kind), code_(code) {}
   Kind kind() const { return kind_; }

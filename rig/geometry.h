@@ -23,10 +23,10 @@ using AxisPositions = std::map<std::string, double>;  // axis name -> angle (rad
 
 // Pinhole camera with radial distortion (OpenCV convention: x right, y down, z forward).
 struct Intrinsics {
-  int width = 0, height = 0;   // pixels
-  double fx = 0, fy = 0;       // focal length in pixels
-  double cx = 0, cy = 0;       // principal point in pixels
-  double k1 = 0, k2 = 0;       // radial distortion (OpenCV model); 0 = none
+  int width = 0, height = 0;  // pixels
+  double fx = 0, fy = 0;      // focal length in pixels
+  double cx = 0, cy = 0;      // principal point in pixels
+  double k1 = 0, k2 = 0;      // radial distortion (OpenCV model); 0 = none
 };
 
 // A rigid transform x_in_camera = camera_from_world * x_in_world.
@@ -49,7 +49,7 @@ struct TargetGeometry {
   double cutout_height = 0.1;  // metres, along world y
   double paper_width = 0.3;    // metres (outer size of the paper)
   double paper_height = 0.3;
-  double paper_albedo = 0.8;   // diffuse reflectance of the paper (grey)
+  double paper_albedo = 0.8;  // diffuse reflectance of the paper (grey)
 };
 
 struct RigGeometry {

@@ -40,14 +40,19 @@ TEST(AtomicFileTest, UnwritableDirectoryGivesErrorNamingThePath) {
 
 TEST(ParallelForTest, CoversEveryIndexExactlyOnce) {
   std::vector<int> hits(1000, 0);
-  ParallelFor(hits.size(), [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) hits[i]++;
-  }, 4);
+  ParallelFor(
+      hits.size(),
+      [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) hits[i]++;
+      },
+      4);
   for (int h : hits) EXPECT_EQ(h, 1);
 }
 
 TEST(ParallelForTest, RethrowsTheWorkersException) {
-  EXPECT_THROW(ParallelFor(10, [](std::size_t, std::size_t) { throw Error("boom"); }, 2), Error);
+  EXPECT_THROW(ParallelFor(
+                   10, [](std::size_t, std::size_t) { throw Error("boom"); }, 2),
+               Error);
 }
 
 }  // namespace
