@@ -1,0 +1,111 @@
+#include "evaluate/svg_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+namespace brdfrig::evaluate {
+namespace {
+
+constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                    "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+
+std::string Escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// Range padded by 5 % (or ±1 around a single value).
+std::pair<double, double> Padded(double lo, double hi) {
+  if (!(lo < hi)) return {lo - 1, hi + 1};
+  const double pad = 0.05 * (hi - lo);
+  return {lo - pad, hi + pad};
+}
+
+}  // namespace
+
+std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& options) {
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+  double y_lo = x_lo, y_hi = -x_lo;
+  for (const Series& s : series) {
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      x_lo = std::min(x_lo, s.x[i]);
+      x_hi = std::max(x_hi, s.x[i]);
+      y_lo = std::min(y_lo, s.y[i]);
+      y_hi = std::max(y_hi, s.y[i]);
+    }
+  }
+  if (!std::isfinite(x_lo)) x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
+  std::tie(x_lo, x_hi) = Padded(x_lo, x_hi);
+  std::tie(y_lo, y_hi) = Padded(y_lo, y_hi);
+
+  const double left = 70, right = 160, top = 40, bottom = 50;
+  const double pw = options.width - left - right, ph = options.height - top - bottom;
+  auto sx = [&](double x) { return left + (x - x_lo) / (x_hi - x_lo) * pw; };
+  auto sy = [&](double y) { return top + (1 - (y - y_lo) / (y_hi - y_lo)) * ph; };
+
+  std::ostringstream svg;
+  svg.precision(4);
+  svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << options.width << "' height='"
+      << options.height << "' font-family='sans-serif' font-size='12'>\n"
+      << "<rect width='100%' height='100%' fill='white'/>\n"
+      << "<text x='" << options.width / 2 << "' y='20' text-anchor='middle' font-size='14'>"
+      << Escape(options.title) << "</text>\n"
+      << "<rect x='" << left << "' y='" << top << "' width='" << pw << "' height='" << ph
+      << "' fill='none' stroke='black'/>\n";
+  for (int i = 0; i <= 5; ++i) {
+    const double xv = x_lo + (x_hi - x_lo) * i / 5, yv = y_lo + (y_hi - y_lo) * i / 5;
+    svg << "<line x1='" << sx(xv) << "' y1='" << top + ph << "' x2='" << sx(xv) << "' y2='"
+        << top + ph + 5 << "' stroke='black'/><text x='" << sx(xv) << "' y='" << top + ph + 18
+        << "' text-anchor='middle'>" << xv << "</text>\n"
+        << "<line x1='" << left - 5 << "' y1='" << sy(yv) << "' x2='" << left << "' y2='" << sy(yv)
+        << "' stroke='black'/><text x='" << left - 8 << "' y='" << sy(yv) + 4
+        << "' text-anchor='end'>" << yv << "</text>\n";
+  }
+  svg << "<text x='" << left + pw / 2 << "' y='" << options.height - 10 << "' text-anchor='middle'>"
+      << Escape(options.x_label) << "</text>\n"
+      << "<text transform='translate(15," << top + ph / 2 << ") rotate(-90)' text-anchor='middle'>"
+      << Escape(options.y_label) << "</text>\n";
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    const Series& s = series[k];
+    const char* colour = kColours[k % std::size(kColours)];
+    std::ostringstream points;
+    points.precision(5);
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      points << sx(s.x[i]) << "," << sy(s.y[i]) << " ";
+      svg << "<circle cx='" << sx(s.x[i]) << "' cy='" << sy(s.y[i]) << "' r='3' fill='" << colour
+          << "'/>\n";
+    }
+    if (s.lines) {
+      svg << "<polyline fill='none' stroke='" << colour << "' stroke-width='1.5' points='"
+          << points.str() << "'/>\n";
+    }
+    const double ly = top + 10 + 18 * static_cast<double>(k);
+    svg << "<rect x='" << left + pw + 12 << "' y='" << ly - 8 << "' width='12' height='3' fill='"
+        << colour << "'/><text x='" << left + pw + 30 << "' y='" << ly << "'>" << Escape(s.label)
+        << "</text>\n";
+  }
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+}  // namespace brdfrig::evaluate
