@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <sstream>
 #include <thread>
 
@@ -16,6 +15,13 @@ using rig::AxisError;
 using rig::CameraError;
 
 constexpr double kDegree = M_PI / 180.0;
+
+// FNV-1a: a stable stream id per axis name (std::hash may differ between standard libraries).
+std::uint64_t StableHash(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  return h;
+}
 
 std::string Degrees(double radians) {
   std::ostringstream out;
@@ -115,8 +121,8 @@ rig::MoveReport SimWorld::MoveAxis(const std::string& axis, double commanded) {
     // The arm lags behind the motor by half the backlash, on the side it came from.
     state.actual -= state.direction * 0.5 * mech->backlash;
     if (mech->jitter > 0) {
-      PixelRng rng(scene().render.seed, static_cast<std::uint64_t>(state.moves),
-                   std::hash<std::string>{}(axis), 0);
+      PixelRng rng(scene().render.seed, static_cast<std::uint64_t>(state.moves), StableHash(axis),
+                   0);
       state.actual += mech->jitter * rng.Gaussian();
     }
   }
