@@ -165,6 +165,32 @@ TEST(SynthesisTest, PhotoEncodingRoundsToSixteenBitsAndClips) {
   }
 }
 
+TEST(SynthesisTest, SensorFormatChoosesTiff16OrJpeg8) {
+  Scene scene = TestScene();
+  scene.sensor.format = PhotoFormat::kTiff16;
+  const Simulator tiff(scene);
+  const cv::Mat image = tiff.RenderCameraImage({}, 0.01, 1);
+  auto decode = [](const std::vector<std::byte>& bytes) {
+    return cv::imdecode(
+        cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<std::byte*>(bytes.data())),
+        cv::IMREAD_UNCHANGED);
+  };
+  const cv::Mat t = decode(tiff.EncodePhoto(image));
+  ASSERT_EQ(t.type(), CV_16UC3);
+  EXPECT_EQ(t.at<cv::Vec3w>(120, 160)[1],
+            std::round(std::clamp<double>(image.at<cv::Vec3f>(120, 160)[1], 0, 1) * 65535));
+  scene.sensor.format = PhotoFormat::kJpeg8;
+  const Simulator jpeg(scene);
+  const std::vector<std::byte> bytes = jpeg.EncodePhoto(image);
+  ASSERT_GT(bytes.size(), 2u);
+  EXPECT_EQ(bytes[0], std::byte{0xFF});
+  EXPECT_EQ(bytes[1], std::byte{0xD8});
+  const cv::Mat j = decode(bytes);
+  ASSERT_EQ(j.type(), CV_8UC3);
+  // Lossy, but close on smooth paper.
+  EXPECT_NEAR(j.at<cv::Vec3b>(20, 160)[1], image.at<cv::Vec3f>(20, 160)[1] * 255, 2.0);
+}
+
 TEST(SynthesisTest, TruthFilesHoldRadianceAndGeometry) {
   const Simulator simulator(TestScene());
   const rig::AxisPositions positions = {{"camera_arm", 20 * kDegree}};
