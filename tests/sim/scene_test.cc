@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+
+#include "brdf/material_file.h"
 
 #include "sim/scene.h"
 #include "test_scene.h"
@@ -167,6 +170,25 @@ TEST(SceneTest, CommandLinePositionsAreDegrees) {
   EXPECT_THROW(ParsePositionsDegrees("camera_arm=abc"), Error);
   EXPECT_THROW(ParsePositionsDegrees("camera_arm"), Error);
   EXPECT_THROW(ParsePositionsDegrees("a=1,a=2"), Error);
+}
+
+TEST(SceneTest, SampleCanBeAFittedSliceModelFile) {
+  const auto dir = std::filesystem::temp_directory_path() / "brdfrig_sim_slices_scene";
+  std::filesystem::create_directories(dir);
+  brdf::Material material;
+  brdf::Slice slice;
+  slice.theta_in = 0.3;
+  for (auto& lobe : slice.channel) lobe = {2.0, 0.1, 0.05, 0.2};
+  material.slices = {slice};
+  brdf::WriteMaterialFile(dir / "material.json", material);
+  const Scene scene =
+      LoadSceneString(BaseSceneYaml("{model: slices, file: material.json}"), "scene.yaml", dir);
+  const rig::Vec3 n = rig::Vec3::UnitZ();
+  const rig::Vec3 l = rig::Vec3(std::sin(0.3), 0, std::cos(0.3));
+  const rig::Vec3 mirror(-l.x(), 0, l.z());
+  EXPECT_NEAR(scene.sample.brdf->Eval(l, mirror, n)[0], material.Model().Eval(l, mirror, n)[0],
+              1e-12);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
