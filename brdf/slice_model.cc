@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <Eigen/Geometry>  // cross()
+
 #include "common/error.h"
 
 namespace brdfrig::brdf {
