@@ -5,12 +5,14 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/brdfrig/sim_commands.h"
 #include "common/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"brdfrig: measure how a flat material reflects light"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("brdfrig ") + BRDFRIG_VERSION);
+  brdfrig::apps::RegisterSimCommands(app);
 
   try {
     app.parse(argc, argv);

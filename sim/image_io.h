@@ -1,0 +1,27 @@
+// Files the simulator writes: photos as a camera would (via OpenCV imgcodecs), and, for
+// evaluation only, the true radiance (OpenEXR, 32-bit float R, G, B) and true geometry (JSON).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "sim/scene.h"
+
+namespace brdfrig::sim {
+
+struct TrueGeometry;
+
+// Sensor image (CV_32FC3, B,G,R, 1 = full scale) → file bytes: clamped to [0, 1] and rounded
+// to 65535 (PNG16, TIFF16) or 255 levels (JPEG8 at sensor.jpeg_quality).
+std::vector<std::byte> EncodePhoto(const cv::Mat& sensor_image, const SensorDescription& sensor);
+
+// Float radiance (CV_32FC3, B,G,R) as an EXR with FLOAT channels R, G, B; written atomically.
+void WriteRadianceExr(const std::filesystem::path& path, const cv::Mat& radiance);
+// Reads such a file back (any EXR with R, G, B channels) as CV_32FC3, B,G,R.
+cv::Mat ReadRadianceExr(const std::filesystem::path& path);
+
+void WriteTrueGeometry(const std::filesystem::path& path, const TrueGeometry& geometry);
+
+}  // namespace brdfrig::sim

@@ -1,0 +1,20 @@
+// The sample's material in a scene: any brdf/ model, analytic with parameters or from a file.
+//   {model: ggx | cook_torrance, diffuse: RGB, f0: RGB, alpha: a}
+//   {model: ward, diffuse: RGB, specular: RGB, alpha: a}
+//   {model: blinn_phong, diffuse: RGB, specular: RGB, exponent: e}
+//   {model: lambert, albedo: RGB}
+//   {model: slices, file: material.json}    {model: merl, file: name.binary}
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "brdf/brdf.h"
+#include "common/yaml_reader.h"
+
+namespace brdfrig::sim {
+
+std::shared_ptr<const brdf::Brdf> ParseSampleBrdf(const YamlNode& node,
+                                                  const std::filesystem::path& base_dir);
+
+}  // namespace brdfrig::sim

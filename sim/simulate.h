@@ -1,0 +1,40 @@
+// `brdfrig simulate`: a bracketed capture of a scene by the simulated rig, written the way the
+// photos would arrive from a camera, with the truth kept apart:
+//
+//   DIR/photos/p00_e0.png ...   the photos (sensor.format)
+//   DIR/photos/capture.json     what the rig reported: axis readings, exposures, durations
+//   DIR/truth/p00.exr           true radiance per position (float, for evaluation only)
+//   DIR/truth/p00.json          true geometry per position (camera pose, light, intrinsics)
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rig/geometry.h"
+
+namespace brdfrig::sim {
+
+struct SimulateOptions {
+  std::filesystem::path scene;
+  std::filesystem::path output_dir;
+  std::vector<rig::AxisPositions> positions;  // radians; empty: the scene's capture.positions
+  std::vector<double> exposures;              // seconds; empty: the scene's capture.exposures
+  int threads = 0;                            // 0 = all hardware threads
+  bool write_truth = true;
+  void Validate() const;  // throws OptionsError
+};
+
+struct SimulateSummary {
+  int positions = 0;
+  int frames = 0;
+  int recovered_faults = 0;   // busy/disconnect/alarm answers the run recovered from
+  double virtual_time_s = 0;  // capture time the rig would have taken
+  double wall_time_s = 0;
+  std::filesystem::path photos_dir, truth_dir;
+  std::string ToString() const;
+};
+
+SimulateSummary Simulate(const SimulateOptions& options);
+
+}  // namespace brdfrig::sim
