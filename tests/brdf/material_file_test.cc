@@ -1,0 +1,111 @@
+#include "brdf/material_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "common/error.h"
+
+namespace brdfrig::brdf {
+namespace {
+
+using ::testing::HasSubstr;
+
+Material Example() {
+  Material m;
+  for (int k = 0; k < 3; ++k) {
+    Slice s;
+    s.theta_in = 0.2 + 0.3 * k;
+    for (int c = 0; c < 3; ++c) s.channel[c] = {10.0 + k + c, 0.1, 0.02 + 0.001 * c, 0.05};
+    m.slices.push_back(s);
+    SliceDiagnostics d;
+    d.residual = 0.01 * k;
+    d.sample_count = 1000 + k;
+    d.theta_min = 0;
+    d.theta_max = 0.2;
+    d.has_stddev = true;
+    for (auto& ch : d.stddev) ch = {0.1, 0.001, NAN, 0.002};
+    d.warnings = {k == 2 ? "A2 unobserved" : ""};
+    m.diagnostics.push_back(d);
+  }
+  m.provenance = {{"software", "brdfrig test"}};
+  return m;
+}
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    ParseMaterial(text, "material.json");
+  } catch (const FileError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(MaterialFileTest, RoundTripsExactlyThroughAFile) {
+  const Material m = Example();
+  const auto path = std::filesystem::temp_directory_path() / "brdfrig_material_test.json";
+  WriteMaterialFile(path, m);
+  const Material r = ReadMaterialFile(path);
+  ASSERT_EQ(r.slices.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(r.slices[k].theta_in, m.slices[k].theta_in);
+    EXPECT_EQ(r.slices[k].channel[2].h, m.slices[k].channel[2].h);
+    EXPECT_EQ(r.diagnostics[k].sample_count, m.diagnostics[k].sample_count);
+    EXPECT_TRUE(std::isnan(r.diagnostics[k].stddev[1][2]));
+    EXPECT_EQ(r.diagnostics[k].stddev[1][3], 0.002);
+  }
+  EXPECT_EQ(r.provenance["software"], "brdfrig test");
+  EXPECT_EQ(SerializeMaterial(r), SerializeMaterial(m));  // deterministic
+  std::filesystem::remove(path);
+}
+
+TEST(MaterialFileTest, OutOfRangeValueNamesTheField) {
+  nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  doc["slices"][2]["green"]["h"] = -0.01;
+  EXPECT_THAT(ErrorOf(doc.dump()),
+              HasSubstr("material.json: slices[2].green.h: must be > 0, got -0.01"));
+}
+
+TEST(MaterialFileTest, MissingOrMistypedFieldsAreNamed) {
+  nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  doc["slices"][1]["red"].erase("x0");
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("slices[1].red.x0: missing"));
+  doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  doc["slices"][0]["blue"]["A1"] = "big";
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("slices[0].blue.A1: expected a number"));
+}
+
+TEST(MaterialFileTest, TruncatedFileIsAParseErrorNotACrash) {
+  const std::string text = SerializeMaterial(Example());
+  for (std::size_t cut : {std::size_t{0}, std::size_t{10}, text.size() / 2, text.size() - 3}) {
+    EXPECT_THAT(ErrorOf(text.substr(0, cut)), HasSubstr("material.json: not valid JSON"));
+  }
+}
+
+TEST(MaterialFileTest, WrongFormatOrVersionIsRejected) {
+  nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  doc["version"] = 2;
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("version: this brdfrig reads version 1"));
+  doc["format"] = "merl";
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("format: expected \"brdfrig-slices\""));
+}
+
+TEST(MaterialFileTest, UnsortedKnotsAreRejected) {
+  nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  std::swap(doc["slices"][0], doc["slices"][1]);
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("slices[1].theta_in: must be greater"));
+}
+
+TEST(MaterialFileTest, WritingAnInvalidModelThrowsAndWritesNothing) {
+  Material m = Example();
+  m.slices[0].channel[0].a2 = -1;
+  const auto path = std::filesystem::temp_directory_path() / "brdfrig_material_invalid.json";
+  std::filesystem::remove(path);
+  EXPECT_THROW(WriteMaterialFile(path, m), Error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+}  // namespace
+}  // namespace brdfrig::brdf
