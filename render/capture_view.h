@@ -1,0 +1,30 @@
+// Renders what a capture position shows: the sample inside the cut-out, the Lambertian paper
+// mask around it and the table beyond, lit by the rig's point light and seen through the
+// capture's camera. The same geometry as sim::Simulator, so a rendering of a fitted material can
+// stand in for a photo (evaluation), and a rendering of the true material must match the
+// simulator's radiance (tests/render/capture_view_test).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "brdf/brdf.h"
+#include "render/renderer.h"
+#include "rig/geometry.h"
+
+namespace brdfrig::render {
+
+// Any brdf::Brdf on the GPU: the slice model, Lambert and GGX have their own shaders; every
+// other model is tabulated into a MERL table and drawn with the table shader.
+std::unique_ptr<GpuMaterial> MakeGpuMaterial(const brdf::Brdf& brdf);
+
+struct CaptureView {
+  rig::TargetGeometry target;  // cut-out and paper sizes, paper albedo
+  brdf::Rgb background_albedo = brdf::Rgb::Constant(0.05);
+  View view;  // camera intrinsics and pose
+  PointLight light;
+};
+
+// Radiance image (CV_32FC3, B, G, R; W/(m² sr)). Needs a current GL context.
+cv::Mat RenderCaptureView(const CaptureView& capture, const brdf::Brdf& sample);
+
+}  // namespace brdfrig::render
