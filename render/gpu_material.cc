@@ -2,6 +2,10 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
 #include "common/error.h"
 
 namespace brdfrig::render {
@@ -27,23 +31,22 @@ std::unique_ptr<GpuMaterial> GpuMaterial::SliceModel(const brdf::SliceModel& mod
   m->program_ = std::make_unique<GlProgram>(
       std::vector<std::string>{"mesh.vert"},
       std::vector<std::string>{"slice_model.glsl", "shade.frag"}, Defines("MATERIAL_SLICE"));
-  std::vector<float> texels;  // 4 parameters × slices, RGBA
-  for (const brdf::Slice& s : slices) {
-    m->knots_.push_back(static_cast<float>(s.theta_in));
-    for (int p = 0; p < 4; ++p) {
-      for (int c = 0; c < 3; ++c) {
-        const brdf::LobeParams& q = s.channel[c];
-        const double values[4] = {q.a1, q.a2, q.h, q.x0};
-        texels.push_back(static_cast<float>(values[p]));
-      }
-      texels.push_back(0);
+  // std140 layout of SliceBlock (shaders/slice_model.glsl).
+  std::vector<float> block(4 * 4 * kMaxSlices + kMaxSlices + 4, 0.0f);
+  for (std::size_t k = 0; k < slices.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      const brdf::LobeParams& q = slices[k].channel[c];
+      // log2(e)/h: the shader then needs one multiply and exp2, no divide (clamped to the
+      // float range so that a tiny h stays a finite, very steep step).
+      const double values[4] = {q.a1, q.a2, std::min(M_LOG2E / q.h, 1e38), q.x0};
+      for (int p = 0; p < 4; ++p) block[16 * k + 4 * p + c] = static_cast<float>(values[p]);
     }
+    block[16 * kMaxSlices + k] = static_cast<float>(slices[k].theta_in);
   }
-  glCreateTextures(GL_TEXTURE_2D, 1, &m->texture_);
-  m->texture_target_ = GL_TEXTURE_2D;
-  glTextureStorage2D(m->texture_, 1, GL_RGBA32F, 4, static_cast<GLsizei>(slices.size()));
-  glTextureSubImage2D(m->texture_, 0, 0, 0, 4, static_cast<GLsizei>(slices.size()), GL_RGBA,
-                      GL_FLOAT, texels.data());
+  m->slice_count_ = static_cast<int>(slices.size());
+  m->block_ = std::move(block);
+  glCreateBuffers(1, &m->buffer_);
+  m->UploadSliceBlock();
   return m;
 }
 
@@ -92,6 +95,21 @@ std::unique_ptr<GpuMaterial> GpuMaterial::Merl(const brdf::MerlTable& table) {
 
 GpuMaterial::~GpuMaterial() {
   if (texture_) glDeleteTextures(1, &texture_);
+  if (buffer_) glDeleteBuffers(1, &buffer_);
+}
+
+void GpuMaterial::UploadSliceBlock() {
+  // The two ints after the float arrays: slice count and the linear-interpolation flag.
+  const std::size_t ints = 16 * kMaxSlices + kMaxSlices;
+  const int flags[2] = {slice_count_, linear_ ? 1 : 0};
+  std::memcpy(&block_[ints], flags, sizeof(flags));
+  glNamedBufferData(buffer_, static_cast<GLsizeiptr>(block_.size() * sizeof(float)), block_.data(),
+                    GL_DYNAMIC_DRAW);
+}
+
+void GpuMaterial::SetLinearInterpolation(bool linear) {
+  linear_ = linear;
+  if (kind_ == Kind::kSlice) UploadSliceBlock();
 }
 
 void GpuMaterial::Bind() const {
@@ -99,11 +117,7 @@ void GpuMaterial::Bind() const {
   if (texture_) glBindTextureUnit(0, texture_);
   switch (kind_) {
     case Kind::kSlice:
-      program_->Set("uSlices", 0);
-      program_->Set("uSliceCount", static_cast<int>(knots_.size()));
-      program_->Set("uLinear", linear_ ? 1 : 0);
-      glUniform1fv(program_->Location("uKnots"), static_cast<GLsizei>(knots_.size()),
-                   knots_.data());
+      glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffer_);
       break;
     case Kind::kLambert:
       program_->Set("uAlbedo", ToFloat(albedo_));
@@ -124,6 +138,7 @@ cv::Mat EvalSliceModelOnGpu(const brdf::SliceModel& model, const cv::Mat& angles
     throw Error("EvalSliceModelOnGpu: angles must be a non-empty CV_32FC2 image");
   }
   std::unique_ptr<GpuMaterial> material = GpuMaterial::SliceModel(model);
+  material->SetLinearInterpolation(linear);
   GlProgram grid({"grid.vert"}, {"slice_model.glsl", "grid.frag"}, Defines("MATERIAL_SLICE"));
   const cv::Mat input = angles.isContinuous() ? angles : angles.clone();
   GLuint textures[2], fbo, vao;
@@ -139,14 +154,9 @@ cv::Mat EvalSliceModelOnGpu(const brdf::SliceModel& model, const cv::Mat& angles
   glViewport(0, 0, input.cols, input.rows);
   glDisable(GL_DEPTH_TEST);
   grid.Use();
-  glBindTextureUnit(0, material->texture_);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, material->buffer_);
   glBindTextureUnit(1, textures[0]);
-  grid.Set("uSlices", 0);
   grid.Set("uAngles", 1);
-  grid.Set("uSliceCount", static_cast<int>(material->knots_.size()));
-  grid.Set("uLinear", linear ? 1 : 0);
-  glUniform1fv(grid.Location("uKnots"), static_cast<GLsizei>(material->knots_.size()),
-               material->knots_.data());
   glBindVertexArray(vao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   cv::Mat rgba(input.rows, input.cols, CV_32FC4);

@@ -1,5 +1,5 @@
 // A material on the GPU: its shading program and parameters. The slice model's slices go to a
-// small float texture (one row per slice, one texel per parameter, rgb = channels).
+// small uniform buffer (4 parameters × slices, rgb = channels, plus the knots).
 #pragma once
 
 #include <memory>
@@ -27,7 +27,7 @@ class GpuMaterial {
   // Binds the program, its textures and material uniforms.
   void Bind() const;
   // Slice model only: spline (default) or linear interpolation across theta_in.
-  void SetLinearInterpolation(bool linear) { linear_ = linear; }
+  void SetLinearInterpolation(bool linear);
 
  private:
   friend cv::Mat EvalSliceModelOnGpu(const brdf::SliceModel&, const cv::Mat&, bool);
@@ -35,7 +35,10 @@ class GpuMaterial {
   std::unique_ptr<GlProgram> program_;
   GLuint texture_ = 0;
   GLenum texture_target_ = 0;
-  std::vector<float> knots_;
+  void UploadSliceBlock();
+  GLuint buffer_ = 0;         // slice model: the SliceBlock uniform buffer
+  std::vector<float> block_;  // its std140 contents
+  int slice_count_ = 0;
   bool linear_ = false;
   brdf::Rgb albedo_ = brdf::Rgb::Zero();
   brdf::MicrofacetParams ggx_;

@@ -58,6 +58,22 @@ void Renderer::Draw(const View& view, const std::vector<PointLight>& lights,
   glClearNamedFramebufferfv(fbo_, GL_COLOR, 0, clear);
   glClear(GL_DEPTH_BUFFER_BIT);
   const Eigen::Matrix4f clip = ClipFromWorld(view);
+  // Depth pre-pass: every pixel is then shaded once, whatever the overdraw.
+  if (!depth_only_) {
+    depth_only_ = std::make_unique<GlProgram>(std::vector<std::string>{"mesh.vert"},
+                                              std::vector<std::string>{"depth.frag"},
+                                              std::vector<std::string>{});
+  }
+  depth_only_->Use();
+  depth_only_->Set("uClipFromWorld", clip);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  for (const DrawItem& item : items) item.mesh->Draw();
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
+
   const Eigen::Vector3f center = view.pose.CenterInWorld().cast<float>();
   std::vector<float> positions, intensities;
   for (const PointLight& light : lights) {
@@ -80,6 +96,8 @@ void Renderer::Draw(const View& view, const std::vector<PointLight>& lights,
     }
     item.mesh->Draw();
   }
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

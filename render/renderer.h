@@ -58,6 +58,7 @@ class Renderer {
   int width_, height_;
   GLuint fbo_ = 0, color_ = 0, depth_ = 0, empty_vao_ = 0;
   std::unique_ptr<GlProgram> tonemap_;
+  std::unique_ptr<GlProgram> depth_only_;
 };
 
 }  // namespace brdfrig::render

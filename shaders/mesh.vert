@@ -3,6 +3,8 @@ layout(location = 1) in vec3 aNormal;
 uniform mat4 uClipFromWorld;
 out vec3 vPosition;
 out vec3 vNormal;
+// The depth pre-pass and the shading pass must produce identical depths (GL_EQUAL test).
+invariant gl_Position;
 void main() {
   vPosition = aPosition;
   vNormal = aNormal;

@@ -1,0 +1,98 @@
+// Frame time of the 50K-triangle test object at 1280×720 with each material shader, in one run,
+// as a ratio to Lambert (the floor of any shading). Run: build/release/bench/bench_render_frame
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "brdf/analytic.h"
+#include "brdf/merl.h"
+#include "brdf/slice_model.h"
+#include "render/gl_context.h"
+#include "render/renderer.h"
+
+using namespace brdfrig;
+
+namespace {
+
+brdf::SliceModel SixSlices() {
+  std::vector<brdf::Slice> slices;
+  for (int k = 0; k < 6; ++k) {
+    brdf::Slice s;
+    s.theta_in = (15 + 10 * k) * M_PI / 180;
+    for (auto& c : s.channel) c = {20.0 + 5 * k, 0.1, 0.03, 0.06};
+    slices.push_back(s);
+  }
+  return brdf::SliceModel(slices);
+}
+
+render::View MakeView() {
+  render::View view;
+  view.intrinsics = {1280, 720, 1100, 1100, 640, 360};
+  const Eigen::Vector3d eye(0.0, -0.17, 0.12), target(0, 0, 0), up(0, 0, 1);
+  const Eigen::Vector3d z = (target - eye).normalized(), x = z.cross(up).normalized(),
+                        y = z.cross(x);
+  Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
+  world_from_camera.linear() << x, y, z;
+  world_from_camera.translation() = eye;
+  view.pose.camera_from_world = world_from_camera.inverse();
+  return view;
+}
+
+double MillisecondsPerFrame(render::Renderer& renderer, const render::View& view,
+                            const render::GpuMesh& mesh, const render::GpuMaterial& material,
+                            int frames) {
+  const std::vector<render::PointLight> lights = {{{0.1, 0.1, 0.3}, brdf::Rgb::Ones()}};
+  renderer.Draw(view, lights, {{&mesh, &material}});  // warm-up: shader compile, first use
+  renderer.Finish();
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames; ++i) renderer.Draw(view, lights, {{&mesh, &material}});
+  renderer.Finish();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+             .count() /
+         frames;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int frames = argc > 1 ? std::stoi(argv[1]) : 20;
+  auto context = render::CreateHeadlessContext();
+  std::printf("GL: %s\n", context->Description().c_str());
+  const render::Mesh mesh = render::MakeTestObject(50000);
+  const render::GpuMesh gpu_mesh(mesh);
+  render::Renderer renderer(1280, 720);
+  const render::View view = MakeView();
+
+  const brdf::MicrofacetParams ggx{brdf::Rgb(0.1, 0.05, 0.03), brdf::Rgb(0.9, 0.6, 0.35), 0.1};
+  struct Entry {
+    std::string name;
+    std::unique_ptr<render::GpuMaterial> material;
+  };
+  std::vector<Entry> entries;
+  entries.push_back({"lambert", render::GpuMaterial::Lambert(brdf::Rgb::Constant(0.5))});
+  entries.push_back({"ggx", render::GpuMaterial::Ggx(ggx)});
+  entries.push_back({"slice model (spline)", render::GpuMaterial::SliceModel(SixSlices())});
+  auto linear = render::GpuMaterial::SliceModel(SixSlices());
+  linear->SetLinearInterpolation(true);
+  entries.push_back({"slice model (linear)", std::move(linear)});
+  entries.push_back(
+      {"merl table", render::GpuMaterial::Merl(brdf::MerlTable::Tabulate(brdf::Ggx(ggx)))});
+
+  // Interleave rounds so machine noise hits every shader alike; keep each shader's best round.
+  std::vector<double> best(entries.size(), 1e300);
+  for (int round = 0; round < 3; ++round) {
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      best[i] = std::min(
+          best[i], MillisecondsPerFrame(renderer, view, gpu_mesh, *entries[i].material, frames));
+    }
+  }
+  std::printf("%zu triangles, 1280x720, %d frames x 3 rounds (best round)\n\n",
+              mesh.TriangleCount(), frames);
+  std::printf("| shader | ms/frame | frames/s | x Lambert |\n|---|---:|---:|---:|\n");
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    std::printf("| %s | %.2f | %.1f | %.2f |\n", entries[i].name.c_str(), best[i], 1000.0 / best[i],
+                best[i] / best[0]);
+  }
+  return 0;
+}

@@ -1,0 +1,2 @@
+// Depth pre-pass: writes depth only, so the expensive material shader then runs once per pixel.
+void main() {}
