@@ -115,20 +115,21 @@ cv::Mat Renderer::ReadRadiance() const {
   return flipped;
 }
 
-void Renderer::PresentToneMapped(int window_width, int window_height, float exposure) {
+void Renderer::PresentToneMapped(int x, int window_width, int window_height, float exposure) {
   if (!tonemap_) {
     tonemap_ = std::make_unique<GlProgram>(std::vector<std::string>{"grid.vert"},
                                            std::vector<std::string>{"tonemap.frag"},
                                            std::vector<std::string>{});
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glViewport(0, 0, std::min(window_width, width_), std::min(window_height, height_));
+  glViewport(x, 0, std::min(window_width, width_), std::min(window_height, height_));
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_FRAMEBUFFER_SRGB);
   tonemap_->Use();
   glBindTextureUnit(0, color_);
   tonemap_->Set("uRadiance", 0);
   tonemap_->Set("uExposure", exposure);
+  tonemap_->Set("uOffsetX", x);
   glBindVertexArray(empty_vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_FRAMEBUFFER_SRGB);

@@ -47,8 +47,9 @@ class Renderer {
   void Finish() const;
   // The float target as radiance, CV_32FC3 in OpenCV B, G, R order, row 0 at the top.
   cv::Mat ReadRadiance() const;
-  // Tone-mapped display of the float target into the bound framebuffer (viewer only).
-  void PresentToneMapped(int window_width, int window_height, float exposure);
+  // Tone-mapped display of the float target into the window's framebuffer at column x
+  // (viewer only).
+  void PresentToneMapped(int x, int window_width, int window_height, float exposure);
 
   GLuint color_texture() const { return color_; }
   int width() const { return width_; }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/brdfrig/render_commands.h"
 #include "apps/brdfrig/sim_commands.h"
 #include "common/error.h"
 
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("brdfrig ") + BRDFRIG_VERSION);
   brdfrig::apps::RegisterSimCommands(app);
+  brdfrig::apps::RegisterRenderCommands(app);
 
   try {
     app.parse(argc, argv);

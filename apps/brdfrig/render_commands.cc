@@ -1,0 +1,52 @@
+#include "apps/brdfrig/render_commands.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "brdf/brdf_file.h"
+#include "evaluate/render_job.h"
+#include "render/viewer.h"
+
+namespace brdfrig::apps {
+
+void RegisterRenderCommands(CLI::App& app) {
+  auto render_options = std::make_shared<evaluate::RenderJobOptions>();
+  CLI::App* render = app.add_subcommand(
+      "render", "Render a material headless (a capture position of a scene, or a mesh)");
+  render->add_option("material", render_options->material, "material.json or MERL .binary")
+      ->required();
+  render->add_option("--scene", render_options->scene, "render a capture position of this scene");
+  render->add_option("--position", render_options->position, "capture position index (scene)");
+  render->add_option("--mesh", render_options->mesh, "sphere | object | plane | file.obj");
+  render->add_option("--width", render_options->width);
+  render->add_option("--height", render_options->height);
+  render->add_option("-o,--output", render_options->output, ".exr radiance or .png picture")
+      ->required();
+  render->callback([render_options] {
+    const evaluate::RenderJobSummary s = evaluate::RunRenderJob(*render_options);
+    std::printf("rendered %s -> %s\n", s.ToString().c_str(), render_options->output.c_str());
+  });
+
+  struct ViewArgs {
+    std::string material, compare;
+    render::ViewerOptions viewer;
+  };
+  auto view_args = std::make_shared<ViewArgs>();
+  CLI::App* view = app.add_subcommand("view", "Interactive viewer (needs a display)");
+  view->add_option("material", view_args->material, "material.json or MERL .binary")->required();
+  view->add_option("--compare", view_args->compare, "a second material shown side by side");
+  view->add_option("--width", view_args->viewer.width);
+  view->add_option("--height", view_args->viewer.height);
+  view->add_option("--frames", view_args->viewer.frames,
+                   "render N frames, save a screenshot and exit");
+  view->add_option("--screenshot", view_args->viewer.screenshot_path);
+  view->callback([view_args] {
+    const auto material = brdf::LoadBrdfFile(view_args->material);
+    std::shared_ptr<const brdf::Brdf> compare;
+    if (!view_args->compare.empty()) compare = brdf::LoadBrdfFile(view_args->compare);
+    render::RunViewer(*material, compare.get(), view_args->material, view_args->compare,
+                      view_args->viewer);
+  });
+}
+
+}  // namespace brdfrig::apps

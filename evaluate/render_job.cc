@@ -1,0 +1,91 @@
+#include "evaluate/render_job.h"
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <sstream>
+
+#include "brdf/brdf_file.h"
+#include "common/error.h"
+#include "evaluate/display_image.h"
+#include "render/capture_view.h"
+#include "render/gl_context.h"
+#include "sim/scene.h"
+#include "sim/simulator.h"
+
+namespace brdfrig::evaluate {
+namespace {
+
+render::Mesh MeshByName(const std::string& name) {
+  if (name == "sphere") return render::MakeSphere(0.06f, 128, 256);
+  if (name == "object") return render::MakeTestObject(50000);
+  if (name == "plane") return render::MakeRectangle(-0.1f, 0.1f, -0.1f, 0.1f);
+  return render::LoadObj(name);
+}
+
+render::View OrbitView(int width, int height) {
+  render::View view;
+  view.intrinsics = {width, height, 1.2 * height, 1.2 * height, width / 2.0, height / 2.0};
+  const Eigen::Vector3d eye(0.15, -0.25, 0.2), z = (-eye).normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized(), y = z.cross(x);
+  Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
+  world_from_camera.linear() << x, y, z;
+  world_from_camera.translation() = eye;
+  view.pose.camera_from_world = world_from_camera.inverse();
+  return view;
+}
+
+}  // namespace
+
+void RenderJobOptions::Validate() const {
+  if (material.empty()) throw OptionsError("render: a material file is required");
+  if (output.empty()) throw OptionsError("render: -o OUTPUT is required");
+  if (width < 1 || height < 1) throw OptionsError("render: --width/--height must be positive");
+  if (position < 0) throw OptionsError("render: --position must be >= 0");
+}
+
+std::string RenderJobSummary::ToString() const {
+  std::ostringstream out;
+  out << width << "x" << height << " in " << milliseconds << " ms on " << gl;
+  return out.str();
+}
+
+RenderJobSummary RunRenderJob(const RenderJobOptions& options) {
+  options.Validate();
+  const std::shared_ptr<const brdf::Brdf> material = brdf::LoadBrdfFile(options.material);
+  const auto context = render::CreateHeadlessContext();
+  RenderJobSummary summary;
+  summary.gl = context->Description();
+  const auto start = std::chrono::steady_clock::now();
+  cv::Mat radiance;
+  if (!options.scene.empty()) {
+    const sim::Scene scene = sim::LoadScene(options.scene);
+    if (options.position >= static_cast<int>(scene.capture.positions.size())) {
+      throw OptionsError("render: --position " + std::to_string(options.position) + " but " +
+                         options.scene.string() + " has " +
+                         std::to_string(scene.capture.positions.size()) + " capture positions");
+    }
+    const sim::TrueGeometry g =
+        sim::Simulator(scene.Ideal()).GeometryAt(scene.capture.positions[options.position]);
+    render::CaptureView capture;
+    capture.target = scene.rig.target;
+    capture.background_albedo = scene.background_albedo;
+    capture.view = {g.intrinsics, g.camera};
+    capture.light = {g.light_position, brdf::Rgb::Constant(g.light_intensity)};
+    radiance = render::RenderCaptureView(capture, *material);
+  } else {
+    const render::GpuMesh mesh(MeshByName(options.mesh));
+    const auto gpu_material = render::MakeGpuMaterial(*material);
+    render::Renderer renderer(options.width, options.height);
+    renderer.Draw(OrbitView(options.width, options.height),
+                  {{{0.2, -0.1, 0.3}, brdf::Rgb::Constant(0.02)}}, {{&mesh, gpu_material.get()}});
+    radiance = renderer.ReadRadiance();
+  }
+  summary.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  summary.width = radiance.cols;
+  summary.height = radiance.rows;
+  WriteImageFile(options.output, radiance);
+  return summary;
+}
+
+}  // namespace brdfrig::evaluate
