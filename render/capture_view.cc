@@ -1,5 +1,8 @@
 #include "render/capture_view.h"
 
+#include <algorithm>
+#include <opencv2/imgproc.hpp>
+
 #include "brdf/analytic.h"
 #include "brdf/merl.h"
 #include "brdf/slice_model.h"
@@ -35,12 +38,28 @@ cv::Mat RenderCaptureView(const CaptureView& capture, const brdf::Brdf& sample) 
       GpuMaterial::Lambert(brdf::Rgb::Constant(t.paper_albedo));
   const std::unique_ptr<GpuMaterial> table = GpuMaterial::Lambert(capture.background_albedo);
 
-  Renderer renderer(capture.view.intrinsics.width, capture.view.intrinsics.height);
-  renderer.Draw(capture.view, {capture.light},
+  // Supersampling renders a finer image whose pixel centres fall on the same sub-pixel grid as
+  // the simulator's: pixel u covers fine pixels u·n … u·n + n − 1.
+  const int n = std::max(1, capture.supersampling);
+  View fine = capture.view;
+  rig::Intrinsics& k = fine.intrinsics;
+  k.width *= n;
+  k.height *= n;
+  k.fx *= n;
+  k.fy *= n;
+  k.cx = (k.cx + 0.5) * n - 0.5;
+  k.cy = (k.cy + 0.5) * n - 0.5;
+  Renderer renderer(k.width, k.height);
+  renderer.Draw(fine, {capture.light},
                 {{&sample_mesh, sample_material.get()},
                  {&paper_mesh, paper.get()},
                  {&table_mesh, table.get()}});
-  return renderer.ReadRadiance();
+  const cv::Mat radiance = renderer.ReadRadiance();
+  if (n == 1) return radiance;
+  cv::Mat box;
+  cv::resize(radiance, box, {capture.view.intrinsics.width, capture.view.intrinsics.height}, 0, 0,
+             cv::INTER_AREA);
+  return box;
 }
 
 }  // namespace brdfrig::render

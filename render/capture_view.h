@@ -22,6 +22,9 @@ struct CaptureView {
   brdf::Rgb background_albedo = brdf::Rgb::Constant(0.05);
   View view;  // camera intrinsics and pose
   PointLight light;
+  // N×N samples per pixel, box-filtered: matches the simulator's anti-aliased edges (its
+  // render.supersampling) so that edge pixels compare like for like.
+  int supersampling = 1;
 };
 
 // Radiance image (CV_32FC3, B, G, R; W/(m² sr)). Needs a current GL context.

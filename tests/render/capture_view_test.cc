@@ -42,6 +42,7 @@ TEST(CaptureViewTest, RendererMatchesSimulatorRadianceAtEveryCapturePosition) {
     capture.view.pose = truth.camera;
     capture.light.position = truth.light_position;
     capture.light.intensity = brdf::Rgb::Constant(truth.light_intensity);
+    capture.supersampling = scene.render.supersampling;
     const cv::Mat rendered = RenderCaptureView(capture, *scene.sample.brdf);
     ASSERT_EQ(rendered.size(), expected.size());
 
@@ -58,11 +59,11 @@ TEST(CaptureViewTest, RendererMatchesSimulatorRadianceAtEveryCapturePosition) {
       }
     }
     std::sort(rel.begin(), rel.end());
-    // Away from edges (where the simulator supersamples and the rasterizer does not) the two
-    // agree to float precision; edges are under 2 % of the pixels.
-    EXPECT_LT(rel[rel.size() / 2], 1e-5);
-    EXPECT_LT(rel[rel.size() * 97 / 100], 1e-3);
-    EXPECT_NEAR(sum_rendered / sum_expected, 1.0, 5e-3);
+    // Both supersample on the same sub-pixel grid (the simulator only at edges, where it
+    // matters; the box filter of a smooth interior differs at second order).
+    EXPECT_LT(rel[rel.size() / 2], 1e-4);
+    EXPECT_LT(rel[rel.size() * 99 / 100], 3e-3);
+    EXPECT_NEAR(sum_rendered / sum_expected, 1.0, 1e-3);
   }
 }
 

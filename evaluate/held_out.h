@@ -1,0 +1,53 @@
+// The seed's evaluation: a photo not used for fitting is compared with a rendering of the fitted
+// model under the same geometry. Every PSNR comes two ways, each naming its protocol:
+//   whole photo  — every pixel (paper mask and table included), in the capture's sensor code
+//                  values, peak = full scale: how the seed compared a real and a synthesized photo;
+//   sample only  — the pixels inside the cut-out (2 px margin), same units: the honest figure for
+//                  the material, far lower because the paper is easy to get right.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "brdf/brdf.h"
+#include "evaluate/image_metrics.h"
+#include "rig/geometry.h"
+#include "sim/scene.h"
+
+namespace brdfrig::evaluate {
+
+struct HeldOutView {
+  std::string name;
+  double phi = 0;  // light azimuth out of the camera's plane of incidence (radians)
+  rig::AxisPositions positions;
+};
+
+// Views at a fixed elevation of camera and light (mirror configuration when phi = 0), the light
+// turned by phi about the sample normal. Needs the scene axes camera_arm, light_arm and
+// light_azimuth (sim/scenes/default.yaml has them).
+std::vector<HeldOutView> OrientationViews(double elevation, const std::vector<double>& phis);
+
+struct HeldOutResult {
+  HeldOutView view;
+  PsnrResult whole_photo;
+  PsnrResult sample_only;
+  cv::Mat photo, rendering;  // sensor images (CV_32FC3, B,G,R, 1 = full scale) for reports
+};
+
+struct HeldOutOptions {
+  double exposure_s = 0;       // 0: the middle exposure of the scene's bracket
+  std::uint64_t frame = 1000;  // noise seed of the held-out photos (distinct from the capture)
+  bool keep_images = false;
+  void Validate() const;
+};
+
+// Renders `fitted` (GPU renderer, headless) and photographs the truth (simulator, with the
+// scene's effects) for every view; needs no GL context of the caller's.
+std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::Brdf& fitted,
+                                           const std::vector<HeldOutView>& views,
+                                           const HeldOutOptions& options = {});
+
+// Bits of the capture's code values (quantization effect, 8 for JPEG, else 16 for PNG/TIFF).
+int CaptureBitDepth(const sim::Scene& scene);
+
+}  // namespace brdfrig::evaluate
