@@ -1,0 +1,78 @@
+#include "rig/rig_file.h"
+
+#include "common/error.h"
+#include "rig/backend_registry.h"
+
+namespace brdfrig::rig {
+namespace {
+
+std::filesystem::path Resolve(const std::filesystem::path& base, const std::string& path) {
+  const std::filesystem::path p(path);
+  return p.is_absolute() ? p : base / p;
+}
+
+std::string BackendOf(const YamlNode& device) {
+  if (!device.IsMap()) device.Fail("expected a mapping with a `backend` key");
+  return device.Required("backend").AsString();
+}
+
+}  // namespace
+
+RigDescription ReadRigDescription(const std::filesystem::path& rig_file) {
+  const YamlNode root = LoadYamlFile(rig_file.string());
+  const std::filesystem::path base = rig_file.parent_path();
+  RigDescription description;
+  description.file = rig_file;
+  description.source_files.push_back(rig_file);
+
+  const YamlNode geometry = root.Required("geometry");
+  if (geometry.IsScalar()) {
+    const std::filesystem::path geometry_file = Resolve(base, geometry.AsString());
+    if (!std::filesystem::exists(geometry_file)) {
+      geometry.Fail("geometry file not found: " + geometry_file.string());
+    }
+    // A scene file (or any file) whose `rig:` section is the geometry; its other sections are
+    // the simulator's business, so only `rig:` is read here.
+    description.geometry = ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
+    description.source_files.push_back(geometry_file);
+  } else {
+    description.geometry = ParseRigGeometry(geometry);
+  }
+
+  BackendOf(root.Required("camera"));
+  if (const auto axes = root.Optional("axes")) {
+    if (!axes->IsMap()) axes->Fail("expected a mapping from axis name to its device settings");
+    for (const std::string& name : axes->Keys()) {
+      const YamlNode axis = axes->Required(name);
+      BackendOf(axis);
+      if (description.geometry.FindAxis(name) == nullptr) {
+        axis.Fail("axis `" + name + "` is not in the rig geometry");
+      }
+    }
+  }
+  if (const auto light = root.Optional("light")) BackendOf(*light);
+  root.Finish();
+  return description;
+}
+
+Rig OpenRig(const std::filesystem::path& rig_file) {
+  Rig rig;
+  rig.description = ReadRigDescription(rig_file);
+  const YamlNode root = LoadYamlFile(rig_file.string());
+  const std::string base = rig_file.parent_path().string();
+  // BackendOf marks `backend` as read, so a factory's Finish() sees only its own keys.
+  const YamlNode camera = root.Required("camera");
+  rig.camera = CreateCamera(BackendOf(camera), camera, {"camera", base});
+  if (const auto axes = root.Optional("axes")) {
+    for (const std::string& name : axes->Keys()) {
+      const YamlNode axis = axes->Required(name);
+      rig.axes[name] = CreateAxis(BackendOf(axis), axis, {name, base});
+    }
+  }
+  if (const auto light = root.Optional("light")) {
+    rig.light = CreateLight(BackendOf(*light), *light, {"light", base});
+  }
+  return rig;
+}
+
+}  // namespace brdfrig::rig

@@ -1,0 +1,54 @@
+// rig.yaml: which backend drives each device, with its settings, plus the rig's nominal
+// geometry. The one place a rig is assembled from configuration, for `brdfrig rig`, the run
+// engine and the daemon alike:
+//
+//   geometry: scenes/default.yaml     # a file whose `rig:` section is the geometry, or inline:
+//   # geometry: {camera: {...}, light: {...}, axes: [...], target: {...}}
+//   camera: {backend: gphoto2, model: "Nikon D750"}
+//   axes:
+//     light_arm: {backend: modbus, transport: tcp, host: 192.168.0.20, slave: 1, profile: az}
+//     camera_arm: {backend: sim, scene: scenes/default.yaml}
+//   light: {backend: sim, scene: scenes/default.yaml}          # optional (switched light)
+//
+// Relative paths are relative to the rig file's directory. Every axis named under `axes` must
+// exist in the geometry. Errors name file:line:column.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "rig/axis.h"
+#include "rig/camera.h"
+#include "rig/geometry.h"
+
+namespace brdfrig::rig {
+
+// A rig file read without opening any device: enough to check a plan or to reconstruct.
+struct RigDescription {
+  std::filesystem::path file;
+  RigGeometry geometry;
+  // Files a session must copy to be reprocessable on its own: the rig file itself and, when
+  // the geometry lives in another file, that file.
+  std::vector<std::filesystem::path> source_files;
+};
+
+struct Rig {
+  RigDescription description;
+  std::unique_ptr<Camera> camera;
+  std::map<std::string, std::unique_ptr<Axis>> axes;  // by axis name
+  std::unique_ptr<Light> light;                       // null when the rig has none
+};
+
+// Reads rig.yaml's geometry and checks the device sections' shape (every device has a
+// `backend`, every axis exists in the geometry) without opening devices; a device's own settings
+// are validated by its backend when it is opened.
+RigDescription ReadRigDescription(const std::filesystem::path& rig_file);
+
+// Reads rig.yaml and opens every device through the backend registry (backends must have been
+// registered first, e.g. sim::RegisterSimBackends()). Throws FileError for configuration
+// errors and CameraError/AxisError for devices that cannot be opened.
+Rig OpenRig(const std::filesystem::path& rig_file);
+
+}  // namespace brdfrig::rig
