@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "common/exr_io.h"
 #include "sim/scene.h"
 
 namespace brdfrig::sim {
@@ -17,10 +18,9 @@ struct TrueGeometry;
 // to 65535 (PNG16, TIFF16) or 255 levels (JPEG8 at sensor.jpeg_quality).
 std::vector<std::byte> EncodePhoto(const cv::Mat& sensor_image, const SensorDescription& sensor);
 
-// Float radiance (CV_32FC3, B,G,R) as an EXR with FLOAT channels R, G, B; written atomically.
-void WriteRadianceExr(const std::filesystem::path& path, const cv::Mat& radiance);
-// Reads such a file back (any EXR with R, G, B channels) as CV_32FC3, B,G,R.
-cv::Mat ReadRadianceExr(const std::filesystem::path& path);
+// The true radiance is written with common/exr_io.h.
+using brdfrig::ReadRadianceExr;
+using brdfrig::WriteRadianceExr;
 
 void WriteTrueGeometry(const std::filesystem::path& path, const TrueGeometry& geometry);
 

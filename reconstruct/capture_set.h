@@ -1,0 +1,37 @@
+// What the reconstruction reads: per capture position the bracket's photo files with their
+// exposure times, plus the rig's nominal geometry (intrinsics, target, nominal light) used only
+// as starting values and for the light's distance. How the photos were stored (a session
+// directory, `brdfrig simulate` output) is the loader's business.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rig/geometry.h"
+
+namespace brdfrig::reconstruct {
+
+struct BracketFrame {
+  std::filesystem::path file;
+  double exposure_s = 0;
+};
+
+struct CapturePosition {
+  int index = 0;
+  rig::AxisPositions axis_readings;  // as the rig reported them (radians)
+  std::vector<BracketFrame> frames;  // any order; sorted by exposure when merged
+};
+
+struct CaptureSet {
+  std::string name;          // for reports, e.g. the session directory
+  rig::RigGeometry nominal;  // intrinsics, target, nominal light geometry
+  std::vector<CapturePosition> positions;
+};
+
+// Reads the photos/capture.json written by `brdfrig simulate` (or `brdfrig capture --sim`),
+// with the nominal geometry from the scene file it names. Throws FileError for a malformed
+// file, a missing photo or a missing scene.
+CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir);
+
+}  // namespace brdfrig::reconstruct

@@ -1,0 +1,201 @@
+#include "reconstruct/hdr_merge.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/photo.hpp>
+
+#include "common/error.h"
+#include "common/parallel.h"
+
+namespace brdfrig::reconstruct {
+
+namespace {
+
+// Per code value: the linear value per channel and a weight on the code (a hat for non-linear
+// 8-bit codes, whose ends carry little information; flat for linear codes).
+struct CodeTable {
+  std::vector<std::array<float, 3>> value;
+  std::vector<float> weight;
+  CodeTable() = default;
+  CodeTable(int codes, const cv::Mat& response) : value(codes), weight(codes, 1.0f) {
+    for (int i = 0; i < codes; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        value[i][c] = response.empty() ? static_cast<float>(i / double(codes - 1))
+                                       : response.at<cv::Vec3f>(i, 0)[c];
+      }
+      if (!response.empty()) {
+        weight[i] = static_cast<float>(std::min(i, codes - 1 - i) + 1) / (codes / 2.0f);
+      }
+    }
+  }
+};
+
+template <typename T>
+struct Decode {
+  const CodeTable& table;
+  float Value(T code, int c) const { return table.value[code][c]; }
+  float Weight(T code) const { return table.weight[code]; }
+};
+template <>
+struct Decode<float> {
+  const CodeTable& table;
+  // Float inputs (EXR) are linear already; NaN/Inf fall out through the range checks.
+  float Value(float v, int) const { return std::isfinite(v) ? v : -1.0f; }
+  float Weight(float) const { return 1.0f; }
+};
+
+// One fused pass: for every pixel and channel the inverse-variance weighted mean of S_k / t_k
+// over the exposures where S_k is neither clipped nor black.
+template <typename T>
+void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
+               const std::vector<std::size_t>& order, const CodeTable& table,
+               const HdrMergeOptions& options, HdrImage* out, std::vector<long>* invalid_per_row) {
+  using Pixel = cv::Vec<T, 3>;
+  const Decode<T> decode{table};
+  const auto saturation = static_cast<float>(options.saturation);
+  const auto black = static_cast<float>(options.black);
+  const auto floor = static_cast<float>(options.read_floor);
+  const std::size_t n = order.size();
+  std::vector<float> times(n), inverse_times(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    times[i] = static_cast<float>(exposures_s[order[i]]);
+    inverse_times[i] = 1.0f / times[i];
+  }
+  const int width = out->radiance.cols;
+  ParallelFor(
+      static_cast<std::size_t>(out->radiance.rows),
+      [&](std::size_t begin, std::size_t end) {
+        std::vector<const Pixel*> rows(n);
+        for (std::size_t y = begin; y < end; ++y) {
+          const int row = static_cast<int>(y);
+          for (std::size_t i = 0; i < n; ++i) rows[i] = images[order[i]].ptr<Pixel>(row);
+          auto* dst = out->radiance.ptr<cv::Vec3f>(row);
+          auto* ok = out->valid.ptr<uchar>(row);
+          long invalid = 0;
+          for (int x = 0; x < width; ++x) {
+            bool clipped_everywhere = false;
+            for (int c = 0; c < 3; ++c) {
+              float num = 0, den = 0;
+              for (std::size_t i = 0; i < n; ++i) {
+                const T code = rows[i][x][c];
+                const float s = decode.Value(code, c);
+                if (!(s < saturation) || s <= black) continue;
+                const float w = decode.Weight(code) * times[i] * times[i] / (s + floor);
+                num += w * s * inverse_times[i];
+                den += w;
+              }
+              if (den > 0) {
+                dst[x][c] = num / den;
+                continue;
+              }
+              const float shortest = decode.Value(rows[0][x][c], c);
+              if (shortest >= saturation || !std::isfinite(static_cast<float>(rows[0][x][c]))) {
+                // Clipped (or not a number) in every exposure: keep a lower bound, flag it.
+                clipped_everywhere = true;
+                dst[x][c] = std::max(shortest, 0.0f) * inverse_times[0];
+              } else {
+                // Black in every exposure: as dark as the longest exposure can tell.
+                dst[x][c] =
+                    std::max(decode.Value(rows[n - 1][x][c], c), 0.0f) * inverse_times[n - 1];
+              }
+            }
+            ok[x] = clipped_everywhere ? 0 : 255;
+            invalid += clipped_everywhere ? 1 : 0;
+          }
+          (*invalid_per_row)[y] = invalid;
+        }
+      },
+      options.threads);
+}
+
+}  // namespace
+
+void HdrMergeOptions::Validate() const {
+  if (!(saturation > black && saturation <= 1)) {
+    throw OptionsError("HdrMergeOptions: need 0 <= black < saturation <= 1");
+  }
+  if (!(read_floor > 0)) throw OptionsError("HdrMergeOptions.read_floor must be > 0");
+}
+
+cv::Mat ReadPhoto(const std::string& path) {
+  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED | cv::IMREAD_ANYDEPTH);
+  if (image.empty())
+    throw FileError(path, "cannot read photo (missing, truncated or not an image)");
+  if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
+  if (image.channels() == 1) cv::cvtColor(image, image, cv::COLOR_GRAY2BGR);
+  if (image.depth() == CV_16F || image.depth() == CV_64F) image.convertTo(image, CV_32F);
+  if (image.depth() != CV_8U && image.depth() != CV_16U && image.depth() != CV_32F) {
+    throw FileError(path, "unsupported photo depth (expected 8 or 16 bits or float per channel)");
+  }
+  return image;
+}
+
+cv::Mat RecoverResponse(const std::vector<cv::Mat>& images,
+                        const std::vector<double>& exposures_s) {
+  std::vector<float> times(exposures_s.begin(), exposures_s.end());
+  cv::Mat response;
+  cv::createCalibrateDebevec()->process(images, response, times);
+  // Normalize: code 255 → 1 (the response is defined up to a scale).
+  const cv::Vec3f top = response.at<cv::Vec3f>(255, 0);
+  for (int i = 0; i < 256; ++i) {
+    cv::Vec3f& r = response.at<cv::Vec3f>(i, 0);
+    for (int c = 0; c < 3; ++c) r[c] /= std::max(top[c], 1e-12f);
+  }
+  return response;
+}
+
+HdrImage MergeBracket(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
+                      const cv::Mat& response, const HdrMergeOptions& options) {
+  options.Validate();
+  if (images.empty() || images.size() != exposures_s.size()) {
+    throw Error("HDR merge: need one exposure time per image");
+  }
+  const cv::Size size = images[0].size();
+  const int depth = images[0].depth();
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    if (images[k].size() != size || images[k].type() != images[0].type() ||
+        images[k].channels() != 3) {
+      throw Error("HDR merge: exposure " + std::to_string(k) +
+                  " differs in size or type from the first (a bracket must be one framing)");
+    }
+    if (!(exposures_s[k] > 0) || !std::isfinite(exposures_s[k])) {
+      throw Error("HDR merge: exposure time " + std::to_string(k) + " must be > 0");
+    }
+  }
+  if (depth == CV_8U && response.rows != 256) {
+    throw Error("HDR merge: 8-bit photos need a recovered camera response");
+  }
+  if (depth != CV_8U && depth != CV_16U && depth != CV_32F) {
+    throw Error("HDR merge: photos must be 8-bit, 16-bit or float");
+  }
+  // Shortest exposure first: its value is the fallback for pixels clipped everywhere.
+  std::vector<std::size_t> order(images.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](auto a, auto b) { return exposures_s[a] < exposures_s[b]; });
+  HdrImage out;
+  out.radiance.create(size, CV_32FC3);
+  out.valid.create(size, CV_8UC1);
+  std::vector<long> invalid_per_row(static_cast<std::size_t>(size.height), 0);
+  switch (depth) {
+    case CV_8U:
+      MergeRows<uchar>(images, exposures_s, order, CodeTable(256, response), options, &out,
+                       &invalid_per_row);
+      break;
+    case CV_16U:
+      MergeRows<ushort>(images, exposures_s, order, CodeTable(65536, {}), options, &out,
+                        &invalid_per_row);
+      break;
+    default:
+      MergeRows<float>(images, exposures_s, order, {}, options, &out, &invalid_per_row);
+  }
+  const long invalid = std::accumulate(invalid_per_row.begin(), invalid_per_row.end(), 0L);
+  out.invalid_fraction = static_cast<double>(invalid) / (static_cast<double>(size.area()));
+  return out;
+}
+
+}  // namespace brdfrig::reconstruct

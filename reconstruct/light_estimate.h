@@ -1,0 +1,39 @@
+// The light's position from the highlight on the sample. The highlight marks the mirror point:
+// the ray from the camera through it, reflected about the sample normal, points at the light.
+// The direction is measured; the distance along it is taken from the rig's nominal light (one
+// highlight cannot tell it). When there is no usable highlight (a matte sample, the highlight
+// outside the cut-out or at its edge), the nominal light is used and a warning says so.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "reconstruct/plane_view.h"
+#include "rig/geometry.h"
+
+namespace brdfrig::reconstruct {
+
+struct LightOptions {
+  double smoothing_px = 1.5;    // Gaussian sigma before the peak search (noise)
+  double min_peak_ratio = 2.0;  // peak / median luminance in the cut-out below which there is
+                                // no highlight to speak of
+  double edge_inset = 0.03;     // fraction of the cut-out's size ignored along its border
+  void Validate() const;
+};
+
+struct LightEstimate {
+  rig::Vec3 position = rig::Vec3::Zero();  // world, metres
+  bool from_highlight = false;             // false: the nominal light was used
+  bool saturated_peak = false;             // the highlight is clipped in every exposure
+  cv::Point2d highlight_px{-1, -1};
+  rig::Vec3 highlight_in_world = rig::Vec3::Zero();
+  double nominal_disagreement_rad = 0;  // angle between measured and nominal light directions
+  std::vector<std::string> warnings;
+};
+
+LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
+                            const rig::TargetGeometry& target, const rig::Vec3& nominal_light,
+                            const LightOptions& options);
+
+}  // namespace brdfrig::reconstruct

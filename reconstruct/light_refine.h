@@ -1,0 +1,38 @@
+// Refining the light direction with the lobe. Within a slice the model is a function of theta,
+// the angle to the mirror direction of the light, alone: the right light makes the measured f
+// of every pixel fall on one curve of theta. The highlight's centroid is a good start but is
+// pulled off the mirror point by the falloff of irradiance and foreshortening (tenths of a
+// degree, enough to bias x0 and A1 by about a percent). This joint fit of the light direction
+// and the three channels' lobes over a subsample of the cut-out's pixels removes that bias.
+// The light's distance stays fixed (it is not observable from one highlight).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "reconstruct/plane_view.h"
+#include "reconstruct/radiometry.h"
+#include "reconstruct/samples.h"
+#include "reconstruct/slice_fit.h"
+
+namespace brdfrig::reconstruct {
+
+struct LightRefineOptions {
+  bool enabled = true;
+  int max_pixels = 6000;  // subsample of the cut-out's valid pixels used by the joint fit
+  int max_iterations = 50;
+  double max_shift_rad = 0.1;  // a larger correction is refused (the highlight was misread)
+  void Validate() const;
+};
+
+struct LightRefinement {
+  rig::Vec3 position = rig::Vec3::Zero();
+  double shift_rad = 0;  // angle between the start and the refined light direction
+  bool accepted = false;
+};
+
+LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
+                            const rig::TargetGeometry& target, const SampleOptions& sample_options,
+                            const rig::Vec3& start_light, const Radiometry& radiometry,
+                            const SliceFit& start_fit, const LightRefineOptions& options);
+
+}  // namespace brdfrig::reconstruct

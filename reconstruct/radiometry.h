@@ -1,0 +1,33 @@
+// Radiometric calibration from the paper mask. The paper is a Lambertian reflector of known
+// albedo ρ, so where it is lit with irradiance factor E = cos(θ_l)/d² its HDR value is
+// k·ρ/π·E, with k the unknown product of light intensity and camera gain (per channel, which
+// also white-balances). k is the median of HDR·π/(ρ·E) over the paper; a sample pixel then has
+// f = HDR / (k·E): a BRDF in 1/sr.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "reconstruct/plane_view.h"
+#include "rig/geometry.h"
+
+namespace brdfrig::reconstruct {
+
+struct RadiometryOptions {
+  double margin = 0.15;  // fraction of the paper band (cut-out edge to paper edge) left out
+  int stride = 2;        // use every stride-th pixel in x and y
+  void Validate() const;
+};
+
+struct Radiometry {
+  cv::Vec3d scale;             // k per channel (B, G, R), HDR units per (W/sr · 1/m² · 1/sr)
+  int paper_pixels = 0;        // pixels used
+  double relative_spread = 0;  // median absolute deviation / median (green): how Lambertian
+                               // and evenly lit the paper looks
+};
+
+// Throws brdfrig::Error when the paper cannot be seen (fewer than 100 usable pixels).
+Radiometry CalibrateFromPaper(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
+                              const rig::Vec3& light, const rig::TargetGeometry& target,
+                              const RadiometryOptions& options);
+
+}  // namespace brdfrig::reconstruct

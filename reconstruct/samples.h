@@ -1,0 +1,40 @@
+// BRDF samples of one capture position: every valid pixel of the sample region (inside the
+// cut-out, away from its edges) becomes (theta_in, theta, f_rgb) with f in 1/sr. The slice
+// model's theta_in for the position is the incidence angle at the cut-out's centre; theta is
+// measured per pixel. Optional binning by theta averages samples in bins of fixed width.
+#pragma once
+
+#include <array>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "reconstruct/plane_view.h"
+#include "reconstruct/radiometry.h"
+#include "rig/geometry.h"
+
+namespace brdfrig::reconstruct {
+
+struct SampleOptions {
+  double edge_margin = 0.04;  // fraction of the cut-out's size excluded along its border
+  double bin_width = 0;       // radians of theta per bin; 0 = no binning (every pixel a sample)
+  void Validate() const;
+};
+
+struct BrdfSamples {
+  double theta_in = 0;                   // the slice's incidence angle (radians)
+  std::vector<double> theta;             // per sample (radians)
+  std::vector<std::array<double, 3>> f;  // per sample, R, G, B (1/sr)
+  std::vector<double> weight;            // pixels per sample (1 without binning)
+  int pixels_used = 0;
+  int pixels_invalid = 0;         // clipped in every exposure (excluded)
+  double theta_in_spread = 0;     // max |theta_in(pixel) − theta_in| over the samples
+  double angular_pixel_size = 0;  // typical theta step between neighbouring pixels (radians)
+  double ThetaMin() const;
+  double ThetaMax() const;
+};
+
+BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
+                           const rig::Vec3& light, const Radiometry& radiometry,
+                           const rig::TargetGeometry& target, const SampleOptions& options);
+
+}  // namespace brdfrig::reconstruct
