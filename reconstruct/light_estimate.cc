@@ -115,12 +115,21 @@ LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const
       sum_y += w * y;
     }
   }
-  if (touches_border || !(sum_w > 0)) {
+  // A broad lobe's half-maximum area may reach the cut-out's border while its peak is well
+  // inside: then the smoothed peak is the start (the centroid would be cut off). Only a peak on
+  // the border itself means the mirror point is at the edge or outside.
+  const int border_px = 3;
+  const cv::Rect interior(border_px, border_px, roi.width - 2 * border_px,
+                          roi.height - 2 * border_px);
+  cv::Mat eroded;
+  cv::erode(inside, eroded, cv::Mat(), cv::Point(-1, -1), border_px);
+  if (!(sum_w > 0) || !interior.contains(peak_at) || !eroded.at<uchar>(peak_at)) {
     estimate.warnings.push_back(
         "highlight at the edge of the cut-out or outside it: nominal light used");
     return estimate;
   }
-  estimate.highlight_px = {roi.x + sum_x / sum_w, roi.y + sum_y / sum_w};
+  estimate.highlight_px = touches_border ? cv::Point2d(roi.x + peak_at.x, roi.y + peak_at.y)
+                                         : cv::Point2d(roi.x + sum_x / sum_w, roi.y + sum_y / sum_w);
   const auto x = view.PointAt(estimate.highlight_px.x, estimate.highlight_px.y);
   if (!x) return estimate;
   const rig::Vec3 v = (view.camera_centre() - *x).normalized();

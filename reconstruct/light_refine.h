@@ -18,8 +18,8 @@ namespace brdfrig::reconstruct {
 
 struct LightRefineOptions {
   bool enabled = true;
-  int max_pixels = 6000;  // subsample of the cut-out's valid pixels used by the joint fit
-  int max_iterations = 50;
+  int max_pixels = 3000;  // subsample of the cut-out's valid pixels used by the joint fit
+  int max_iterations = 30;
   double max_shift_rad = 0.1;  // a larger correction is refused (the highlight was misread)
   void Validate() const;
 };

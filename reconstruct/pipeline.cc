@@ -10,7 +10,6 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/exr_io.h"
-#include "common/version.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -289,7 +288,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   }
 
   brdf::Material& material = result.material;
-  nlohmann::json provenance = {{"software", std::string("brdfrig ") + kSoftwareVersion},
+  nlohmann::json provenance = {{"software", std::string("brdfrig ") + BRDFRIG_VERSION},
                                {"source", capture.name},
                                {"method", "per-position logistic slices, Ceres LM, log residuals"}};
   nlohmann::json used = nlohmann::json::array();

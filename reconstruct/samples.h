@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -16,7 +17,9 @@ namespace brdfrig::reconstruct {
 
 struct SampleOptions {
   double edge_margin = 0.04;  // fraction of the cut-out's size excluded along its border
-  double bin_width = 0;       // radians of theta per bin; 0 = no binning (every pixel a sample)
+  // Radians of theta per bin; 0 = every pixel a sample. The default (0.02°) is well below any
+  // resolvable lobe width and cuts the fit's time by two orders of magnitude.
+  double bin_width = 0.02 * M_PI / 180;
   void Validate() const;
 };
 

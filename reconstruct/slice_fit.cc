@@ -231,9 +231,8 @@ SliceFit FitSlice(const BrdfSamples& samples, const SliceFitOptions& options,
     const double contrast = (p.a1 - p.a2) / std::max(p.a2, 1e-300);
     if (contrast < 0.05) fit.flat = true;
     if (fit.theta_max < p.x0 + 3 * p.h) fit.a2_observed = false;
-    if (fit.theta_min > std::max(p.x0 - 2 * p.h, 0.0) && p.x0 > fit.theta_min) {
-      fit.a1_observed = false;
-    }
+    // The peak side of the lobe is unsampled (clipped or outside the cut-out).
+    if (fit.theta_min > p.x0 - p.h) fit.a1_observed = false;
     if (p.h <= 1.01 * min_h) fit.h_resolved = false;
   }
   if (fit.flat) {

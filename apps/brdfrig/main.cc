@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/brdfrig/evaluate_commands.h"
+#include "apps/brdfrig/reconstruct_commands.h"
 #include "apps/brdfrig/render_commands.h"
 #include "apps/brdfrig/sim_commands.h"
 #include "common/error.h"
@@ -15,6 +17,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("brdfrig ") + BRDFRIG_VERSION);
   brdfrig::apps::RegisterSimCommands(app);
   brdfrig::apps::RegisterRenderCommands(app);
+  brdfrig::apps::RegisterReconstructCommands(app);
+  brdfrig::apps::RegisterEvaluateCommands(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,67 @@
+#include "apps/brdfrig/reconstruct_commands.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "common/error.h"
+#include "reconstruct/batch.h"
+
+namespace brdfrig::apps {
+namespace {
+
+struct ReconstructArgs {
+  std::vector<std::string> inputs;
+  std::string output;
+  int jobs = 2;
+  bool force = false;
+  double bin_width_deg = 0.02;
+  bool no_light_refine = false;
+};
+
+}  // namespace
+
+void RegisterReconstructCommands(CLI::App& app) {
+  auto args = std::make_shared<ReconstructArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "reconstruct", "Fit a slice model (material.json) to the photos of one or many captures");
+  cmd->add_option("captures", args->inputs,
+                  "Capture directories (sessions or `brdfrig simulate` output), or directories "
+                  "holding captures")
+      ->required();
+  cmd->add_option("-o,--output", args->output,
+                  "material.json (one capture) or a directory (one subdirectory per capture)")
+      ->required();
+  cmd->add_option("-j,--jobs", args->jobs, "Captures reconstructed at once");
+  cmd->add_flag("--force", args->force, "Redo captures whose output is up to date");
+  cmd->add_option(
+      "--bin-width-deg", args->bin_width_deg,
+      "Average samples in bins of this many degrees of theta (0 = every pixel; default 0.02)");
+  cmd->add_flag("--no-light-refine", args->no_light_refine,
+                "Keep the light from the highlight's centroid (no joint refinement)");
+  cmd->callback([args] {
+    reconstruct::BatchOptions options;
+    for (const std::string& input : args->inputs) options.inputs.emplace_back(input);
+    options.output = args->output;
+    options.jobs = args->jobs;
+    options.force = args->force;
+    options.reconstruct.samples.bin_width = args->bin_width_deg * M_PI / 180;
+    options.reconstruct.light_refine.enabled = !args->no_light_refine;
+    const auto items = reconstruct::ReconstructBatch(
+        options, [](const std::string& message) { std::fprintf(stderr, "%s\n", message.c_str()); });
+    int failed = 0;
+    for (const auto& item : items) {
+      const char* status = item.status == reconstruct::BatchItem::Status::kDone       ? "done"
+                           : item.status == reconstruct::BatchItem::Status::kUpToDate ? "up to date"
+                                                                                      : "FAILED";
+      std::printf(
+          "%-10s %s -> %s (%.1f s)%s%s\n", status, item.input.string().c_str(),
+          item.material_file.string().c_str(), item.seconds,
+          item.status == reconstruct::BatchItem::Status::kFailed ? ": " : "",
+          item.status == reconstruct::BatchItem::Status::kFailed ? item.message.c_str() : "");
+      failed += item.status == reconstruct::BatchItem::Status::kFailed;
+    }
+    if (failed > 0) throw Error(std::to_string(failed) + " capture(s) failed (see above)");
+  });
+}
+
+}  // namespace brdfrig::apps

@@ -1,0 +1,29 @@
+// `brdfrig demo`, the main job: a simulated capture of the default scene → reconstruction →
+// held-out renders against held-out photos → BRDF error against the truth → a report directory
+// (report.html with plots and images, report.txt, material.json, hdr/, views/, the capture).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace brdfrig::evaluate {
+
+struct DemoOptions {
+  std::filesystem::path scene;       // default: the built-in sim/scenes/default.yaml
+  std::filesystem::path output_dir;  // the report directory
+  double view_elevation_deg = 40;    // held-out views: camera and light at this elevation,
+  std::vector<double> view_phis_deg = {0, 20, 45, 90, 135, 180};  // light turned by phi
+  std::function<void(const std::string&)> progress;
+  void Validate() const;
+};
+
+struct DemoSummary {
+  std::filesystem::path report_html;
+  std::string text;  // the plain-text report
+};
+
+DemoSummary RunDemo(const DemoOptions& options);
+
+}  // namespace brdfrig::evaluate

@@ -1,0 +1,168 @@
+#include "reconstruct/batch.h"
+
+#include <openssl/evp.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+
+namespace brdfrig::reconstruct {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<fs::path> ExpandInputs(const std::vector<fs::path>& inputs) {
+  std::vector<fs::path> captures;
+  for (const fs::path& input : inputs) {
+    if (!fs::is_directory(input)) throw FileError(input.string(), "not a directory");
+    if (IsCaptureDirectory(input)) {
+      captures.push_back(input);
+      continue;
+    }
+    std::vector<fs::path> inside;
+    for (const auto& entry : fs::directory_iterator(input)) {
+      if (entry.is_directory() && IsCaptureDirectory(entry.path())) inside.push_back(entry.path());
+    }
+    if (inside.empty()) {
+      throw FileError(input.string(),
+                      "neither a capture (photos/capture.json or session.sqlite) nor a directory "
+                      "of captures");
+    }
+    std::sort(inside.begin(), inside.end());
+    captures.insert(captures.end(), inside.begin(), inside.end());
+  }
+  return captures;
+}
+
+std::string ExistingFingerprint(const fs::path& material_file) {
+  if (!fs::exists(material_file)) return {};
+  try {
+    const brdf::Material m = brdf::ReadMaterialFile(material_file);
+    return m.provenance.value("input_sha256", "") + "/" + m.provenance.value("software", "");
+  } catch (const Error&) {
+    return {};  // unreadable: redo it
+  }
+}
+
+}  // namespace
+
+void BatchOptions::Validate() const {
+  if (inputs.empty()) throw OptionsError("reconstruct: no input capture given");
+  if (output.empty()) throw OptionsError("reconstruct: no output given (-o)");
+  if (jobs < 1) throw OptionsError("reconstruct: --jobs must be >= 1");
+  reconstruct.Validate();
+}
+
+bool IsCaptureDirectory(const fs::path& dir) {
+  return fs::exists(dir / "session.sqlite") || fs::exists(dir / "photos" / "capture.json") ||
+         fs::exists(dir / "capture.json");
+}
+
+CaptureSet LoadCapture(const fs::path& dir) { return LoadSimulatedCapture(dir); }
+
+std::string CaptureFingerprint(const CaptureSet& capture) {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
+  std::vector<char> buffer(1 << 20);
+  for (const CapturePosition& position : capture.positions) {
+    for (const BracketFrame& frame : position.frames) {
+      const std::string name =
+          frame.file.filename().string() + "@" + std::to_string(frame.exposure_s);
+      EVP_DigestUpdate(ctx.get(), name.data(), name.size());
+      std::ifstream in(frame.file, std::ios::binary);
+      while (in) {
+        in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
+      }
+    }
+  }
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_DigestFinal_ex(ctx.get(), digest, &length);
+  std::string hex;
+  char byte[3];
+  for (unsigned int i = 0; i < length; ++i) {
+    std::snprintf(byte, sizeof(byte), "%02x", digest[i]);
+    hex += byte;
+  }
+  return hex;
+}
+
+std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
+                                        const ProgressCallback& progress) {
+  options.Validate();
+  const std::vector<fs::path> captures = ExpandInputs(options.inputs);
+  const bool single = captures.size() == 1;
+  std::vector<BatchItem> items(captures.size());
+  for (std::size_t i = 0; i < captures.size(); ++i) {
+    items[i].input = captures[i];
+    const fs::path dir = single && options.output.extension() == ".json"
+                             ? options.output.parent_path()
+                             : (single ? options.output : options.output / captures[i].filename());
+    items[i].material_file =
+        single && options.output.extension() == ".json" ? options.output : dir / "material.json";
+  }
+  std::mutex mutex;
+  const auto say = [&](const std::string& message) {
+    std::lock_guard lock(mutex);
+    if (progress) progress(message);
+  };
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> finished{0};
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < items.size(); i = next++) {
+      BatchItem& item = items[i];
+      const auto start = std::chrono::steady_clock::now();
+      const std::string name = item.input.filename().string();
+      try {
+        const CaptureSet capture = LoadCapture(item.input);
+        const std::string fingerprint = CaptureFingerprint(capture);
+        const std::string software = std::string("brdfrig ") + BRDFRIG_VERSION;
+        if (!options.force &&
+            ExistingFingerprint(item.material_file) == fingerprint + "/" + software) {
+          item.status = BatchItem::Status::kUpToDate;
+          item.message = "up to date";
+        } else {
+          const fs::path out_dir = item.material_file.parent_path();
+          if (fs::weakly_canonical(out_dir).string().rfind(
+                  fs::weakly_canonical(item.input).string(), 0) == 0) {
+            throw Error("the output " + out_dir.string() +
+                        " lies inside the capture: a capture's recorded data is never written to");
+          }
+          ReconstructOptions reconstruct = options.reconstruct;
+          reconstruct.hdr_dir = out_dir / "hdr";
+          fs::create_directories(out_dir);
+          ReconstructionResult result = Reconstruct(
+              capture, reconstruct, [&](const std::string& m) { say(name + ": " + m); });
+          result.material.provenance["input_sha256"] = fingerprint;
+          brdf::WriteMaterialFile(item.material_file, result.material);
+          WriteFileAtomically(out_dir / "report.txt", result.Summary());
+          item.status = BatchItem::Status::kDone;
+          item.message = std::to_string(result.material.slices.size()) + " slices";
+        }
+      } catch (const Error& e) {
+        item.status = BatchItem::Status::kFailed;
+        item.message = e.what();
+      }
+      item.seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      say("[" + std::to_string(++finished) + "/" + std::to_string(items.size()) + "] " + name +
+          ": " + item.message);
+    }
+  };
+  std::vector<std::thread> threads;
+  const int jobs = std::min<int>(options.jobs, static_cast<int>(items.size()));
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  return items;
+}
+
+}  // namespace brdfrig::reconstruct

@@ -1,0 +1,44 @@
+// Offline reprocessing: `brdfrig reconstruct` over one capture or many (a directory of
+// captures), in parallel, skipping captures whose material.json is up to date (same software
+// version and same photo contents, by SHA-256), never writing into a capture's own directory.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "reconstruct/pipeline.h"
+
+namespace brdfrig::reconstruct {
+
+struct BatchOptions {
+  std::vector<std::filesystem::path> inputs;  // captures, or directories holding captures
+  // One capture: the material file (…/material.json) or a directory; several: a directory
+  // receiving <capture name>/material.json, hdr/ and report.txt.
+  std::filesystem::path output;
+  ReconstructOptions reconstruct;
+  int jobs = 2;        // captures reconstructed at once
+  bool force = false;  // redo even when up to date
+  void Validate() const;
+};
+
+struct BatchItem {
+  std::filesystem::path input, material_file;
+  enum class Status { kDone, kUpToDate, kFailed } status = Status::kFailed;
+  std::string message;  // failure reason, or the result's one-line summary
+  double seconds = 0;
+};
+
+// Whether `dir` is a capture this command can read (a `brdfrig simulate` output or a session).
+bool IsCaptureDirectory(const std::filesystem::path& dir);
+
+// Reads a capture of either kind.
+CaptureSet LoadCapture(const std::filesystem::path& dir);
+
+// SHA-256 over the capture's photo files (names and contents), hex.
+std::string CaptureFingerprint(const CaptureSet& capture);
+
+std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
+                                        const ProgressCallback& progress = {});
+
+}  // namespace brdfrig::reconstruct
