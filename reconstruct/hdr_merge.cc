@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <numeric>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/photo.hpp>
 
 #include "common/error.h"
+#include "common/exr_io.h"
 #include "common/parallel.h"
 
 namespace brdfrig::reconstruct {
@@ -122,6 +124,8 @@ void HdrMergeOptions::Validate() const {
 }
 
 cv::Mat ReadPhoto(const std::string& path) {
+  // EXR through OpenEXR itself (OpenCV's reader is disabled by default in Debian's build).
+  if (std::filesystem::path(path).extension() == ".exr") return ReadRadianceExr(path);
   cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED | cv::IMREAD_ANYDEPTH);
   if (image.empty())
     throw FileError(path, "cannot read photo (missing, truncated or not an image)");

@@ -128,8 +128,9 @@ LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const
         "highlight at the edge of the cut-out or outside it: nominal light used");
     return estimate;
   }
-  estimate.highlight_px = touches_border ? cv::Point2d(roi.x + peak_at.x, roi.y + peak_at.y)
-                                         : cv::Point2d(roi.x + sum_x / sum_w, roi.y + sum_y / sum_w);
+  estimate.highlight_px = touches_border
+                              ? cv::Point2d(roi.x + peak_at.x, roi.y + peak_at.y)
+                              : cv::Point2d(roi.x + sum_x / sum_w, roi.y + sum_y / sum_w);
   const auto x = view.PointAt(estimate.highlight_px.x, estimate.highlight_px.y);
   if (!x) return estimate;
   const rig::Vec3 v = (view.camera_centre() - *x).normalized();

@@ -190,6 +190,11 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
         data.samples = ExtractSamples(hdr.radiance, hdr.valid, view, report.light.position,
                                       report.radiometry, nominal.target, options.samples);
       }
+      if (data.samples.theta.size() < 16) {
+        throw Error("only " + std::to_string(data.samples.pixels_used) + " usable sample pixels (" +
+                    std::to_string(data.samples.pixels_invalid) +
+                    " clipped in every exposure): add a shorter exposure");
+      }
       if (report.light.from_highlight && options.light_refine.enabled) {
         StageTimer timer(&seconds, "light");
         const LightRefinement refined = RefineLight(

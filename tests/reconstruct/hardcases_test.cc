@@ -1,0 +1,199 @@
+// Captures built to break the reconstruction. Each checks that every number produced is finite,
+// that the diagnostics say what the data cannot support, and accuracy where the data allow.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "common/atomic_file.h"
+#include "common/exr_io.h"
+#include "reconstruct/pipeline.h"
+#include "tests/reconstruct/capture_fixture.h"
+
+namespace brdfrig::reconstruct {
+namespace {
+
+using testing::SceneSpec;
+using testing::SimulateCapture;
+
+const char* kGgx = "{model: ggx, alpha: 0.1, f0: [0.9, 0.6, 0.35], diffuse: [0.1, 0.05, 0.03]}";
+const char* kRealistic =
+    "[{type: shot_noise, full_well: 30000}, {type: read_noise, sigma: 0.0005}, "
+    "{type: saturation, level: 1.0}, {type: quantization, bits: 14}]";
+
+std::filesystem::path TempDir(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("brdfrig_hardcase_" + name);
+}
+
+void ExpectFinite(const brdf::Material& m) {
+  ASSERT_FALSE(m.slices.empty());
+  for (std::size_t i = 0; i < m.slices.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(m.slices[i].theta_in));
+    for (const brdf::LobeParams& p : m.slices[i].channel) {
+      EXPECT_TRUE(std::isfinite(p.a1) && std::isfinite(p.a2) && std::isfinite(p.h) &&
+                  std::isfinite(p.x0))
+          << "slice " << i;
+      EXPECT_GE(p.a1, p.a2);
+      EXPECT_GE(p.a2, 0);
+      EXPECT_GT(p.h, 0);
+    }
+  }
+  EXPECT_NO_THROW(m.Model());
+}
+
+bool AnyWarningContains(const ReconstructionResult& r, const std::string& text) {
+  for (const auto& d : r.material.diagnostics) {
+    for (const auto& w : d.warnings) {
+      if (w.find(text) != std::string::npos) return true;
+    }
+  }
+  for (const auto& w : r.warnings) {
+    if (w.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(HardCases, HighlightSaturatedInEveryExposureIsFlagged) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.effects = kRealistic;
+  spec.exposures = "[0.004, 0.008, 0.016]";  // the peak clips even in the shortest
+  spec.positions = "[{camera_arm: 20, light_arm: -20}, {camera_arm: 40, light_arm: -40}]";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("saturated"), spec), {});
+  ExpectFinite(r.material);
+  EXPECT_TRUE(AnyWarningContains(r, "clipped in every exposure"));
+  for (const auto& p : r.positions) EXPECT_GT(p.invalid_fraction, 0);
+  // A bracket where the whole sample clips: the position is skipped with the reason.
+  spec.exposures = "[0.03, 0.05, 0.0666667]";
+  try {
+    Reconstruct(SimulateCapture(TempDir("saturated_all"), spec), {});
+    FAIL() << "an all-clipped capture was reconstructed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("add a shorter exposure"), std::string::npos) << e.what();
+  }
+}
+
+TEST(HardCases, HighlightOutsideTheCutoutFallsBackToTheNominalLight) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.positions = "[{camera_arm: 20, light_arm: -45}, {camera_arm: 30, light_arm: -30}]";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("outside"), spec), {});
+  ExpectFinite(r.material);
+  EXPECT_TRUE(AnyWarningContains(r, "nominal light used"));
+}
+
+TEST(HardCases, GrazingLightIsUsedOrSkippedWithAReasonNeverACrash) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.positions = "[{camera_arm: 30, light_arm: -30}, {camera_arm: 82, light_arm: -82}]";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("grazing"), spec), {});
+  ExpectFinite(r.material);
+  for (const auto& p : r.positions) {
+    if (!p.used) {
+      EXPECT_FALSE(p.skipped_reason.empty());
+    }
+  }
+}
+
+TEST(HardCases, NearlyLambertianSampleGivesFlatSlicesAtTheRightLevel) {
+  SceneSpec spec;
+  spec.brdf = "{model: lambert, albedo: [0.4, 0.3, 0.2]}";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("lambert"), spec), {});
+  ExpectFinite(r.material);
+  EXPECT_TRUE(AnyWarningContains(r, "no highlight"));
+  EXPECT_TRUE(AnyWarningContains(r, "no lobe"));
+  for (const brdf::Slice& s : r.material.slices) {
+    EXPECT_NEAR(s.channel[0].a2, 0.4 / M_PI, 0.01 * 0.4 / M_PI);  // radiometry to 1%
+    EXPECT_NEAR(s.channel[2].a2, 0.2 / M_PI, 0.01 * 0.2 / M_PI);
+  }
+}
+
+TEST(HardCases, NearMirrorSampleSaysTheLobeEdgeIsUnresolved) {
+  SceneSpec spec;
+  spec.brdf = "{model: ggx, alpha: 0.004, f0: 0.9, diffuse: 0.05}";
+  spec.exposures = "[0.00025, 0.008, 0.0666667]";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("mirror"), spec), {});
+  ExpectFinite(r.material);
+  EXPECT_TRUE(AnyWarningContains(r, "h unresolved") || AnyWarningContains(r, "clipped"));
+}
+
+TEST(HardCases, MissingAndCorruptPhotosSkipTheirPositionWithTheFileNamed) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  const auto dir = TempDir("missing");
+  CaptureSet capture = SimulateCapture(dir, spec);
+  std::filesystem::remove(capture.positions[0].frames[1].file);
+  WriteFileAtomically(capture.positions[1].frames[0].file, "not a png");
+  const ReconstructionResult r = Reconstruct(capture, {});
+  ExpectFinite(r.material);
+  EXPECT_EQ(r.material.slices.size(), 1u);
+  ASSERT_EQ(r.warnings.size(), 2u);
+  EXPECT_NE(r.warnings[0].find(capture.positions[0].frames[1].file.filename().string()),
+            std::string::npos)
+      << r.warnings[0];
+  // Nothing usable at all is an error that lists every reason.
+  std::filesystem::remove(capture.positions[2].frames[0].file);
+  EXPECT_THROW(Reconstruct(capture, {}), Error);
+}
+
+TEST(HardCases, NanAndInfInInputExrAreInvalidPixelsNotNumbers) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.positions = "[{camera_arm: 30, light_arm: -30}]";
+  CaptureSet capture = SimulateCapture(TempDir("nan"), spec);
+  for (BracketFrame& frame : capture.positions[0].frames) {
+    cv::Mat photo = cv::imread(frame.file.string(), cv::IMREAD_UNCHANGED);
+    cv::Mat linear;
+    photo.convertTo(linear, CV_32FC3, 1.0 / 65535);
+    for (int y = 200; y < 230; ++y) {
+      for (int x = 300; x < 330; ++x) {
+        linear.at<cv::Vec3f>(y, x) = cv::Vec3f(NAN, INFINITY, NAN);
+      }
+    }
+    frame.file.replace_extension(".exr");
+    WriteRadianceExr(frame.file, linear);
+  }
+  const ReconstructionResult r = Reconstruct(capture, {});
+  ExpectFinite(r.material);
+  EXPECT_GT(r.positions[0].invalid_fraction, 0);
+}
+
+TEST(HardCases, PartlyOccludedCornersStillGiveThePose) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.positions = "[{camera_arm: 30, light_arm: -30}]";
+  CaptureSet capture = SimulateCapture(TempDir("occluded"), spec);
+  // A dark object over one corner of the cut-out in every photo.
+  Eigen::Vector2d corner;
+  const rig::CameraPose truth = capture.nominal.CameraAt(capture.positions[0].axis_readings);
+  ASSERT_TRUE(rig::ProjectToPixel(capture.nominal.intrinsics, truth, {0.05, 0.05, 0}, &corner));
+  for (const BracketFrame& frame : capture.positions[0].frames) {
+    cv::Mat photo = cv::imread(frame.file.string(), cv::IMREAD_UNCHANGED);
+    cv::circle(photo, cv::Point(static_cast<int>(corner.x()), static_cast<int>(corner.y())), 8,
+               cv::Scalar(500, 500, 500), cv::FILLED);
+    cv::imwrite(frame.file.string(), photo);
+  }
+  const ReconstructionResult r = Reconstruct(capture, {});
+  ExpectFinite(r.material);
+  ASSERT_TRUE(r.positions[0].used);
+  EXPECT_LT(r.positions[0].camera_disagreement_m, 2e-3);
+}
+
+TEST(HardCases, Noisy8BitCaptureRecoversTheResponseAndFitsFinite) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.sensor_format = "jpeg8";
+  spec.effects =
+      "[{type: shot_noise, full_well: 20000}, {type: read_noise, sigma: 0.001}, "
+      "{type: saturation, level: 1.0}, {type: response_curve, curve: srgb}]";
+  spec.exposures = "[0.001, 0.004, 0.016, 0.0666667]";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("jpeg"), spec), {});
+  ExpectFinite(r.material);
+  EXPECT_EQ(r.material.slices.size(), 3u);
+}
+
+}  // namespace
+}  // namespace brdfrig::reconstruct
