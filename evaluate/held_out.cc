@@ -91,6 +91,7 @@ std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::
     capture.view = {g.intrinsics, g.camera};
     capture.light = {g.light_position, brdf::Rgb::Constant(g.light_intensity)};
     capture.supersampling = scene.render.supersampling;
+    capture.linear_interpolation = options.linear_interpolation;
     cv::Mat rendering =
         sensor.Expose(render::RenderCaptureView(capture, fitted), exposure, options.frame);
     // Code values as the photo file holds them: clamp to the sensor's range.

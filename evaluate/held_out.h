@@ -38,6 +38,7 @@ struct HeldOutOptions {
   double exposure_s = 0;       // 0: the middle exposure of the scene's bracket
   std::uint64_t frame = 1000;  // noise seed of the held-out photos (distinct from the capture)
   bool keep_images = false;
+  bool linear_interpolation = false;  // slice models: the seed's linear interpolation
   void Validate() const;
 };
 

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/photo.hpp>
+#include <type_traits>
 
 #include "common/error.h"
 #include "common/exr_io.h"
@@ -68,6 +69,24 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
     inverse_times[i] = 1.0f / times[i];
   }
   const int width = out->radiance.cols;
+  // Per (exposure, channel, code) weighted terms, for 8-bit inputs.
+  std::vector<float> lut_num, lut_den;
+  if constexpr (std::is_same_v<T, uchar>) {
+    lut_num.assign(n * 3 * 256, 0.0f);
+    lut_den.assign(n * 3 * 256, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        for (int code = 0; code < 256; ++code) {
+          const float s = decode.Value(static_cast<T>(code), c);
+          if (!(s < saturation) || s <= black) continue;
+          const float w = decode.Weight(static_cast<T>(code)) * times[i] * times[i] / (s + floor);
+          const std::size_t at = (i * 3 + static_cast<std::size_t>(c)) * 256 + code;
+          lut_num[at] = w * s * inverse_times[i];
+          lut_den[at] = w;
+        }
+      }
+    }
+  }
   ParallelFor(
       static_cast<std::size_t>(out->radiance.rows),
       [&](std::size_t begin, std::size_t end) {
@@ -82,13 +101,23 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
             bool clipped_everywhere = false;
             for (int c = 0; c < 3; ++c) {
               float num = 0, den = 0;
-              for (std::size_t i = 0; i < n; ++i) {
-                const T code = rows[i][x][c];
-                const float s = decode.Value(code, c);
-                if (!(s < saturation) || s <= black) continue;
-                const float w = decode.Weight(code) * times[i] * times[i] / (s + floor);
-                num += w * s * inverse_times[i];
-                den += w;
+              if constexpr (std::is_same_v<T, uchar>) {
+                // 8-bit: every (exposure, channel, code) term is a table lookup.
+                for (std::size_t i = 0; i < n; ++i) {
+                  const std::size_t at =
+                      (i * 3 + static_cast<std::size_t>(c)) * 256 + rows[i][x][c];
+                  num += lut_num[at];
+                  den += lut_den[at];
+                }
+              } else {
+                for (std::size_t i = 0; i < n; ++i) {
+                  const T code = rows[i][x][c];
+                  const float s = decode.Value(code, c);
+                  if (!(s < saturation) || s <= black) continue;
+                  const float w = decode.Weight(code) * times[i] * times[i] / (s + floor);
+                  num += w * s * inverse_times[i];
+                  den += w;
+                }
               }
               if (den > 0) {
                 dst[x][c] = num / den;

@@ -34,6 +34,7 @@ cv::Mat RenderCaptureView(const CaptureView& capture, const brdf::Brdf& sample) 
   const GpuMesh paper_mesh(MakeFrame(cw, ch, pw, ph));
   const GpuMesh table_mesh(MakeFrame(pw, ph, kTable, kTable));
   const std::unique_ptr<GpuMaterial> sample_material = MakeGpuMaterial(sample);
+  if (capture.linear_interpolation) sample_material->SetLinearInterpolation(true);
   const std::unique_ptr<GpuMaterial> paper =
       GpuMaterial::Lambert(brdf::Rgb::Constant(t.paper_albedo));
   const std::unique_ptr<GpuMaterial> table = GpuMaterial::Lambert(capture.background_albedo);

@@ -25,6 +25,8 @@ struct CaptureView {
   // N×N samples per pixel, box-filtered: matches the simulator's anti-aliased edges (its
   // render.supersampling) so that edge pixels compare like for like.
   int supersampling = 1;
+  // Slice models only: linear instead of spline interpolation across theta_in (the seed's).
+  bool linear_interpolation = false;
 };
 
 // Radiance image (CV_32FC3, B, G, R; W/(m² sr)). Needs a current GL context.

@@ -1,0 +1,152 @@
+// The seed's photo-count analysis and the accuracy-versus-time sweep, on the default scene.
+//   bench_evaluate_study [photo-count|sweep|all] [--out DIR] [--size WxH]
+// Prints markdown tables and writes SVG plots into DIR (default: docs/figures).
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/atomic_file.h"
+#include "evaluate/report.h"
+#include "evaluate/study.h"
+#include "evaluate/svg_plot.h"
+
+namespace {
+
+using namespace brdfrig;
+using evaluate::Fixed;
+
+std::vector<double> Spread(int count, double from, double to) {
+  if (count == 1) return {0.5 * (from + to)};
+  std::vector<double> v;
+  for (int i = 0; i < count; ++i) v.push_back(from + (to - from) * i / (count - 1));
+  return v;
+}
+
+evaluate::StudySettings Base(int width, int height) {
+  evaluate::StudySettings s;
+  s.width = width;
+  s.height = height;
+  s.position_degrees = Spread(6, 15, 65);
+  s.work_dir = std::filesystem::temp_directory_path() / "brdfrig_study";
+  return s;
+}
+
+void PhotoCount(int width, int height, const std::filesystem::path& out) {
+  std::printf("\n## Held-out PSNR against orientation phi, by number of photos (positions)\n\n");
+  std::printf(
+      "Default scene at %dx%d; positions spread evenly over 15..65 deg; held-out views at "
+      "elevation 40 deg, light turned by phi. Each cell: whole photo / sample only (dB).\n\n",
+      width, height);
+  const std::vector<int> counts = {1, 2, 3, 4, 5, 6, 8};
+  std::vector<evaluate::Series> whole, sample;
+  bool header = false;
+  for (int count : counts) {
+    evaluate::StudySettings s = Base(width, height);
+    s.position_degrees = Spread(count, 15, 65);
+    const evaluate::StudyResult r = evaluate::RunStudyPoint(s);
+    if (!header) {
+      std::printf("| photos |");
+      for (const auto& v : r.views) std::printf(" phi %3.0f |", v.view.phi * 180 / M_PI);
+      std::printf(" mean | BRDF err | capture (s) | reconstruct (s) |\n|---|");
+      for (std::size_t i = 0; i < r.views.size() + 4; ++i) std::printf("---|");
+      std::printf("\n");
+      header = true;
+    }
+    std::printf("| %d |", count);
+    evaluate::Series w{std::to_string(count) + " photos", {}, {}, true};
+    evaluate::Series p = w;
+    for (const auto& v : r.views) {
+      std::printf(" %s / %s |", Fixed(v.whole_photo.psnr_db, 1).c_str(),
+                  Fixed(v.sample_only.psnr_db, 1).c_str());
+      w.x.push_back(v.view.phi * 180 / M_PI);
+      w.y.push_back(v.whole_photo.psnr_db);
+      p.x.push_back(v.view.phi * 180 / M_PI);
+      p.y.push_back(v.sample_only.psnr_db);
+    }
+    std::printf(" %s / %s | %s | %s | %s |\n", Fixed(r.mean_psnr_whole, 1).c_str(),
+                Fixed(r.mean_psnr_sample, 1).c_str(), Fixed(r.brdf_error, 3).c_str(),
+                Fixed(r.capture_time_s, 1).c_str(), Fixed(r.reconstruct_time_s, 2).c_str());
+    std::fflush(stdout);
+    whole.push_back(w);
+    sample.push_back(p);
+  }
+  WriteFileAtomically(out / "photo_count_whole.svg",
+                      evaluate::SvgLinePlot(whole, {"Held-out PSNR, whole photo", "phi (degrees)",
+                                                    "PSNR (dB)", 640, 400}));
+  WriteFileAtomically(out / "photo_count_sample.svg",
+                      evaluate::SvgLinePlot(sample, {"Held-out PSNR, sample only", "phi (degrees)",
+                                                     "PSNR (dB)", 640, 400}));
+}
+
+void Sweep(int width, int height, const std::filesystem::path& out) {
+  std::printf("\n## Accuracy against time\n\n");
+  std::printf(
+      "Default scene; one knob changed at a time from the default (6 positions, 3 "
+      "exposures, %dx%d, 0.02 deg bins, spline). Capture time: the rig's virtual clock "
+      "(moves + exposures + downloads). PSNR: mean over 7 held-out views.\n\n",
+      width, height);
+  std::printf(
+      "| setting | PSNR whole (dB) | PSNR sample (dB) | BRDF err | capture (s) | "
+      "reconstruct (s) |\n|---|---|---|---|---|---|\n");
+  struct Point {
+    std::string name;
+    evaluate::StudySettings settings;
+  };
+  std::vector<Point> points;
+  const auto add = [&](const std::string& name, auto change) {
+    evaluate::StudySettings s = Base(width, height);
+    change(s);
+    points.push_back({name, s});
+  };
+  add("default", [](auto&) {});
+  add("3 positions", [](auto& s) { s.position_degrees = Spread(3, 15, 65); });
+  add("8 positions", [](auto& s) { s.position_degrees = Spread(8, 15, 65); });
+  add("1 exposure", [](auto& s) { s.exposures = {0.008}; });
+  add("2 exposures", [](auto& s) { s.exposures = {0.001, 0.0666667}; });
+  add("half resolution", [&](auto& s) {
+    s.width = width / 2;
+    s.height = height / 2;
+  });
+  add("no binning", [](auto& s) { s.bin_width_deg = 0; });
+  add("0.2 deg bins", [](auto& s) { s.bin_width_deg = 0.2; });
+  add("5 fit iterations", [](auto& s) { s.fit_iterations = 5; });
+  add("linear interpolation", [](auto& s) { s.linear_interpolation = true; });
+  evaluate::Series frontier{"settings", {}, {}, false};
+  for (const Point& p : points) {
+    const evaluate::StudyResult r = evaluate::RunStudyPoint(p.settings);
+    std::printf("| %s | %s | %s | %s | %s | %s |\n", p.name.c_str(),
+                Fixed(r.mean_psnr_whole, 2).c_str(), Fixed(r.mean_psnr_sample, 2).c_str(),
+                Fixed(r.brdf_error, 3).c_str(), Fixed(r.capture_time_s, 1).c_str(),
+                Fixed(r.reconstruct_time_s, 2).c_str());
+    std::fflush(stdout);
+    frontier.x.push_back(r.capture_time_s + r.reconstruct_time_s);
+    frontier.y.push_back(r.mean_psnr_sample);
+  }
+  WriteFileAtomically(out / "accuracy_time.svg",
+                      evaluate::SvgLinePlot(
+                          {frontier}, {"Accuracy against time", "capture + reconstruction time (s)",
+                                       "mean held-out PSNR, sample only (dB)", 640, 400}));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string mode = "all";
+  std::filesystem::path out = std::filesystem::path(BRDFRIG_SOURCE_DIR) / "docs/figures";
+  int width = 800, height = 600;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
+      out = argv[++i];
+    } else if (std::strcmp(argv[i], "--size") == 0 && i + 1 < argc) {
+      std::sscanf(argv[++i], "%dx%d", &width, &height);
+    } else {
+      mode = argv[i];
+    }
+  }
+  std::filesystem::create_directories(out);
+  if (mode == "photo-count" || mode == "all") PhotoCount(width, height, out);
+  if (mode == "sweep" || mode == "all") Sweep(width, height, out);
+  return 0;
+}

@@ -1,0 +1,39 @@
+// One point of the accuracy-versus-time studies (the seed's photo-count analysis and the sweep
+// over the knobs that trade accuracy for time): simulate a capture of a scene with some
+// settings, reconstruct, evaluate held-out views, and report accuracy and what it cost.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "evaluate/held_out.h"
+
+namespace brdfrig::evaluate {
+
+struct StudySettings {
+  std::filesystem::path scene;           // base scene (default: sim/scenes/default.yaml)
+  std::vector<double> position_degrees;  // symmetric arms: camera_arm = θ, light_arm = −θ
+  std::vector<double> exposures;         // empty: the scene's
+  int width = 0, height = 0;             // 0: the scene's resolution
+  double bin_width_deg = 0.02;           // sample binning (0 = every pixel)
+  int fit_iterations = 200;
+  bool linear_interpolation = false;  // render with the seed's linear interpolation
+  double view_elevation_deg = 40;
+  std::vector<double> view_phis_deg = {0, 30, 60, 90, 120, 150, 180};
+  std::filesystem::path work_dir;  // scratch (the simulated capture)
+};
+
+struct StudyResult {
+  std::vector<HeldOutResult> views;
+  double mean_psnr_whole = 0, mean_psnr_sample = 0;  // dB, averaged over views
+  double brdf_error = 0;          // brdf::LogCosineError against the scene's sample
+  double capture_time_s = 0;      // the rig's virtual clock: moves + exposures + downloads
+  double reconstruct_time_s = 0;  // wall time of the reconstruction
+  int slices = 0;
+  std::vector<std::string> warnings;
+};
+
+StudyResult RunStudyPoint(const StudySettings& settings);
+
+}  // namespace brdfrig::evaluate
