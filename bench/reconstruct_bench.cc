@@ -4,7 +4,7 @@
 //      true radiance (after one best scale per channel: HDR is defined up to a scale).
 //   2. Time per pipeline stage for the default 6-position × 3-exposure capture.
 // Sizes: 2 MP (2000×1000) and, with --large, 24 MP (6000×4000).
-//   bench_reconstruct [--large]
+//   bench_reconstruct [--large] [--merge-only]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -150,7 +150,11 @@ void StageTimes(int width, int height) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool large = argc > 1 && std::strcmp(argv[1], "--large") == 0;
+  bool large = false, merge_only = false;
+  for (int i = 1; i < argc; ++i) {
+    large = large || std::strcmp(argv[i], "--large") == 0;
+    merge_only = merge_only || std::strcmp(argv[i], "--merge-only") == 0;
+  }
   std::vector<std::pair<int, int>> sizes = {{2000, 1000}};
   if (large) sizes.emplace_back(6000, 4000);
   std::printf(
@@ -164,6 +168,7 @@ int main(int argc, char** argv) {
       "|-----------|---------------|----------|------------|----------|----------|------------|----"
       "----------|\n");
   for (const auto& [w, h] : sizes) MergeComparison(w, h);
+  if (merge_only) return 0;
   std::printf("\nPipeline stages (s), 6 positions × 3 exposures, 14-bit PNG, default scene\n\n");
   std::printf(
       "| size      |    load |     hdr |  target |   light | radiom. | samples |     fit |   total "

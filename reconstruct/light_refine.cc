@@ -80,8 +80,9 @@ LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const
       const cv::Vec3f value = radiance.at<cv::Vec3f>(y, x);
       PixelRecord record{*p, (view.camera_centre() - *p).normalized(), {}};
       bool ok = true;
+      const cv::Vec3d k = radiometry.ScaleAt(x, y);
       for (int c = 0; c < 3; ++c) {
-        const double v = value[2 - c] / radiometry.scale[2 - c];  // B,G,R → R,G,B
+        const double v = value[2 - c] / k[2 - c];  // B,G,R → R,G,B
         ok = ok && v > 0 && std::isfinite(v);
         record.log_value[c] = ok ? std::log(v) : 0;
       }

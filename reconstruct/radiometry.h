@@ -5,6 +5,7 @@
 // f = HDR / (k·E): a BRDF in 1/sr.
 #pragma once
 
+#include <array>
 #include <opencv2/core.hpp>
 
 #include "reconstruct/plane_view.h"
@@ -15,6 +16,10 @@ namespace brdfrig::reconstruct {
 struct RadiometryOptions {
   double margin = 0.15;  // fraction of the paper band (cut-out edge to paper edge) left out
   int stride = 2;        // use every stride-th pixel in x and y
+  // k as a quadratic surface over the image, fitted to the paper ring around the cut-out and
+  // evaluated inside it: absorbs vignetting and uneven light (a flat field from the paper).
+  // false: one k per channel (the median).
+  bool flat_field = true;
   void Validate() const;
 };
 
@@ -23,6 +28,11 @@ struct Radiometry {
   int paper_pixels = 0;        // pixels used
   double relative_spread = 0;  // median absolute deviation / median (green): how Lambertian
                                // and evenly lit the paper looks
+  // Flat field: k_c(x, y) = scale_c · (1 + Σ coeffs_c · [1, u, v, u², uv, v²]), u, v = pixel
+  // coordinates relative to the image centre over its half width. Zero without a flat field.
+  std::array<std::array<double, 6>, 3> field{};
+  int width = 0, height = 0;
+  cv::Vec3d ScaleAt(double x, double y) const;
 };
 
 // Throws brdfrig::Error when the paper cannot be seen (fewer than 100 usable pixels).

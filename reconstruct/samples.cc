@@ -73,8 +73,8 @@ BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const 
           continue;
         }
         // B,G,R image → R,G,B material channels.
-        row.f.push_back({value[2] / (radiometry.scale[2] * e), value[1] / (radiometry.scale[1] * e),
-                         value[0] / (radiometry.scale[0] * e)});
+        const cv::Vec3d k = radiometry.ScaleAt(x, y);
+        row.f.push_back({value[2] / (k[2] * e), value[1] / (k[1] * e), value[0] / (k[0] * e)});
         row.theta.push_back(angles.theta);
         row.spread = std::max(row.spread, std::abs(angles.theta_in - out.theta_in));
         if (previous_theta >= 0) {
