@@ -14,9 +14,8 @@ namespace fs = std::filesystem;
 
 rig::AxisPositions AxesFromJson(const std::string& text) {
   rig::AxisPositions axes;
-  for (const auto& [name, value] : nlohmann::json::parse(text).items()) {
-    axes[name] = value.get<double>();
-  }
+  const nlohmann::json j = nlohmann::json::parse(text);
+  for (auto it = j.begin(); it != j.end(); ++it) axes[it.key()] = it.value().get<double>();
   return axes;
 }
 
