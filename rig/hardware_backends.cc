@@ -1,0 +1,44 @@
+#include "rig/hardware_backends.h"
+
+#include "rig/backend_registry.h"
+#include "rig/drive_profile.h"
+#include "rig/modbus_axis.h"
+#include "rig/modbus_light.h"
+
+namespace brdfrig::rig {
+namespace {
+
+std::unique_ptr<Axis> OpenModbusAxis(const YamlNode& settings, const DeviceContext& context) {
+  const ModbusLinkOptions link = ReadModbusLinkOptions(settings);
+  const ModbusAxisOptions options = ReadModbusAxisOptions(settings);
+  const YamlNode profile_node = settings.Required("profile");
+  DriveProfile profile;
+  try {
+    profile = LoadDriveProfile(profile_node.AsString(), context.base_dir);
+  } catch (const FileError&) {
+    throw;  // an error inside the profile file already names its own file:line
+  } catch (const Error& e) {
+    profile_node.Fail(e.what());
+  }
+  settings.Finish();
+  return std::make_unique<ModbusAxis>(context.device_name, SharedModbusLink(link), profile,
+                                      options);
+}
+
+std::unique_ptr<Light> OpenModbusLight(const YamlNode& settings, const DeviceContext&) {
+  const ModbusLinkOptions link = ReadModbusLinkOptions(settings);
+  const int slave = settings.Get("slave", 1);
+  const YamlNode coil = settings.Required("coil");
+  const int address = static_cast<int>(coil.InRange(coil.AsInt(), 0, 65535));
+  settings.Finish();
+  return std::make_unique<ModbusLight>(SharedModbusLink(link), slave, address);
+}
+
+}  // namespace
+
+void RegisterHardwareBackends() {
+  RegisterAxisBackend("modbus", OpenModbusAxis);
+  RegisterLightBackend("modbus", OpenModbusLight);
+}
+
+}  // namespace brdfrig::rig
