@@ -46,8 +46,7 @@ MeteringResult ChooseBracket(const cv::Mat& levels, double metering_exposure_s,
   std::nth_element(paper.begin(), paper.begin() + paper.size() / 2, paper.end());
   result.paper_level = std::max(1e-6, static_cast<double>(paper[paper.size() / 2]));
   // Linear sensor: level scales with exposure.
-  const double shortest =
-      metering_exposure_s * settings.highlight_max / std::max(max_level, 1e-6);
+  const double shortest = metering_exposure_s * settings.highlight_max / std::max(max_level, 1e-6);
   double longest = metering_exposure_s * settings.paper_level / result.paper_level;
   const int n = settings.count;
   // Keep the bracket at least one stop apart so it still spans a useful range.

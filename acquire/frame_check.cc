@@ -47,9 +47,15 @@ FrameCheck CheckFrame(std::span<const std::byte> bytes, const std::string& file_
   }
   double scale = 1.0;
   switch (image.depth()) {
-    case CV_8U: scale = 1.0 / 255; break;
-    case CV_16U: scale = 1.0 / 65535; break;
-    default: scale = 1.0; break;  // float images are already in fractions of full scale
+    case CV_8U:
+      scale = 1.0 / 255;
+      break;
+    case CV_16U:
+      scale = 1.0 / 65535;
+      break;
+    default:
+      scale = 1.0;
+      break;  // float images are already in fractions of full scale
   }
   cv::Mat as_float;
   image.convertTo(as_float, CV_32F, scale);
@@ -70,8 +76,8 @@ FrameCheck CheckFrame(std::span<const std::byte> bytes, const std::string& file_
       static_cast<double>(gray.total());
   if (max_level < options.black_level) {
     check.ok = false;
-    check.problem = "all black (brightest pixel at " + std::to_string(max_level) +
-                    " of full scale)";
+    check.problem =
+        "all black (brightest pixel at " + std::to_string(max_level) + " of full scale)";
   }
   if (levels) *levels = gray;
   return check;

@@ -10,7 +10,7 @@
 namespace brdfrig::acquire {
 
 struct FrameCheckOptions {
-  int expected_width = 0;   // 0 = do not check
+  int expected_width = 0;  // 0 = do not check
   int expected_height = 0;
   double saturation_level = 0.98;  // fraction of full scale counted as saturated
   double black_level = 0.002;      // a frame whose brightest pixel is below this is "all black"
@@ -22,7 +22,7 @@ struct FrameCheck {
   double max_level = 0;           // brightest pixel, fraction of full scale
   double saturated_fraction = 0;  // pixels (any channel) at or above saturation_level
   bool ok = true;
-  std::string problem;            // why not ok
+  std::string problem;  // why not ok
 };
 
 // `levels`, when given, receives the decoded image as one float channel (max over colour

@@ -69,7 +69,8 @@ void ParseExposures(const YamlNode& node, Plan* plan) {
     if (a.count < 1 || a.count > 9) count->Fail("count must be between 1 and 9");
   }
   if (auto m = settings.Optional("metering_s")) a.metering_s = m->Positive(m->AsDouble());
-  if (auto h = settings.Optional("highlight_max")) a.highlight_max = h->InRange(h->AsDouble(), 0.05, 1);
+  if (auto h = settings.Optional("highlight_max"))
+    a.highlight_max = h->InRange(h->AsDouble(), 0.05, 1);
   if (auto p = settings.Optional("paper_level")) a.paper_level = p->InRange(p->AsDouble(), 0.01, 1);
   settings.Finish();
 }

@@ -10,9 +10,7 @@ namespace {
 
 constexpr double kDegree = M_PI / 180.0;
 
-std::string At(const Plan& plan, int line) {
-  return plan.file + ":" + std::to_string(line) + ": ";
-}
+std::string At(const Plan& plan, int line) { return plan.file + ":" + std::to_string(line) + ": "; }
 
 std::string Deg(double radians) {
   char text[32];
@@ -37,8 +35,8 @@ void CheckHighlight(const rig::RigGeometry& g, const rig::AxisPositions& axes, P
   c->highlight_y = p.y();
   const rig::Vec3 n = rig::Vec3::UnitZ();
   c->theta_in = std::acos(std::clamp((light - p).normalized().dot(n), -1.0, 1.0));
-  const bool in_cutout = std::abs(p.x()) <= g.target.cutout_width / 2 &&
-                         std::abs(p.y()) <= g.target.cutout_height / 2;
+  const bool in_cutout =
+      std::abs(p.x()) <= g.target.cutout_width / 2 && std::abs(p.y()) <= g.target.cutout_height / 2;
   Eigen::Vector2d pixel;
   const bool projects = rig::ProjectToPixel(g.intrinsics, pose, p, &pixel) && pixel.x() >= 0 &&
                         pixel.y() >= 0 && pixel.x() < g.intrinsics.width &&
@@ -85,8 +83,7 @@ PlanCheckReport CheckPlan(const Plan& plan, const rig::RigDescription& rig,
       const rig::RotationAxis* axis = g.FindAxis(name);
       if (axis == nullptr) {
         report.errors.push_back(At(plan, planned.line) + "position " + std::to_string(i) +
-                                ": the rig (" + rig.file.string() + ") has no axis '" + name +
-                                "'");
+                                ": the rig (" + rig.file.string() + ") has no axis '" + name + "'");
         check.reachable = false;
         continue;
       }
@@ -109,8 +106,8 @@ PlanCheckReport CheckPlan(const Plan& plan, const rig::RigDescription& rig,
         report.warnings.push_back(At(plan, planned.line) + "position " + std::to_string(i) +
                                   ": the highlight is not on the cut-out in the image (mirror "
                                   "point at x = " +
-                                  std::to_string(check.highlight_x) + " m, y = " +
-                                  std::to_string(check.highlight_y) + " m)");
+                                  std::to_string(check.highlight_x) +
+                                  " m, y = " + std::to_string(check.highlight_y) + " m)");
       }
     }
     report.moves_s += check.move_s;
@@ -133,10 +130,10 @@ std::string PlanCheckReport::ToString() const {
   out << "position  line  reachable  highlight  pixel (u, v)      theta_in  theta_max  move\n";
   char row[160];
   for (const PositionCheck& c : positions) {
-    std::snprintf(row, sizeof row, "%8d  %4d  %-9s  %-9s  (%6.0f, %6.0f)  %7.1f°  %8.1f°  %5.1f s\n",
-                  c.index, c.line, c.reachable ? "yes" : "NO",
-                  c.highlight_visible ? "visible" : "NOT SEEN", c.highlight_u, c.highlight_v,
-                  c.theta_in / kDegree, c.theta_max / kDegree, c.move_s);
+    std::snprintf(
+        row, sizeof row, "%8d  %4d  %-9s  %-9s  (%6.0f, %6.0f)  %7.1f°  %8.1f°  %5.1f s\n", c.index,
+        c.line, c.reachable ? "yes" : "NO", c.highlight_visible ? "visible" : "NOT SEEN",
+        c.highlight_u, c.highlight_v, c.theta_in / kDegree, c.theta_max / kDegree, c.move_s);
     out << row;
   }
   std::snprintf(row, sizeof row,

@@ -23,14 +23,14 @@ struct TimingAssumptions {
 
 struct PositionCheck {
   int index = 0;
-  int line = 0;                 // in the plan file
-  bool reachable = true;        // every axis exists and is within its limits
+  int line = 0;           // in the plan file
+  bool reachable = true;  // every axis exists and is within its limits
   bool highlight_visible = false;
   double highlight_x = 0, highlight_y = 0;  // mirror point on the sample plane (metres)
   double highlight_u = 0, highlight_v = 0;  // ... and its pixel, when it projects
-  double theta_in = 0;          // incidence angle at the mirror point (radians)
-  double theta_max = 0;         // largest angle from the mirror direction over the cut-out
-  double move_s = 0;            // estimated move from the previous position
+  double theta_in = 0;                      // incidence angle at the mirror point (radians)
+  double theta_max = 0;  // largest angle from the mirror direction over the cut-out
+  double move_s = 0;     // estimated move from the previous position
 };
 
 struct PlanCheckReport {

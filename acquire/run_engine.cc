@@ -32,12 +32,18 @@ std::string Seconds(double s) {
 
 const char* RunStateName(RunState state) {
   switch (state) {
-    case RunState::kIdle: return "idle";
-    case RunState::kMoving: return "moving";
-    case RunState::kAcquiring: return "acquiring";
-    case RunState::kPaused: return "paused";
-    case RunState::kFault: return "fault";
-    case RunState::kDone: return "done";
+    case RunState::kIdle:
+      return "idle";
+    case RunState::kMoving:
+      return "moving";
+    case RunState::kAcquiring:
+      return "acquiring";
+    case RunState::kPaused:
+      return "paused";
+    case RunState::kFault:
+      return "fault";
+    case RunState::kDone:
+      return "done";
   }
   return "?";
 }
@@ -75,8 +81,8 @@ RunEngine::RunEngine(rig::Rig& rig, SessionStore& store, Plan plan, RunOptions o
     for (const auto& [axis, angle] : p.axes) {
       if (!rig_.axes.count(axis)) {
         throw FileError(plan_.file, p.line, 0,
-                        "the plan moves axis '" + axis + "' but " +
-                            rig_.description.file.string() + " has no device for it");
+                        "the plan moves axis '" + axis + "' but " + rig_.description.file.string() +
+                            " has no device for it");
       }
     }
   }
@@ -244,10 +250,10 @@ void RunEngine::MoveTo(int p) {
                                kind == rig::AxisError::Kind::kTimeout ||
                                kind == rig::AxisError::Kind::kCommunication;
       if (!recoverable || attempt >= options_.retry.max_attempts) {
-        throw Stop{ExitStatus::kFailed,
-                   std::string("axis: ") + e.what() +
-                       (recoverable ? " (gave up after " + std::to_string(attempt) + " attempts)"
-                                    : "")};
+        throw Stop{
+            ExitStatus::kFailed,
+            std::string("axis: ") + e.what() +
+                (recoverable ? " (gave up after " + std::to_string(attempt) + " attempts)" : "")};
       }
       Fault(p, std::string("axis: ") + e.what(), attempt);
       Backoff(attempt);
@@ -332,8 +338,8 @@ std::vector<double> RunEngine::Meter(int p) {
     const std::vector<rig::Frame> frames = Shoot(p, metering, &actual);
     FrameCheckOptions check;
     cv::Mat levels;
-    const FrameCheck result = CheckFrame(frames.front().bytes, frames.front().file_name, check,
-                                         &levels);
+    const FrameCheck result =
+        CheckFrame(frames.front().bytes, frames.front().file_name, check, &levels);
     if (!result.decoded) {
       throw Stop{ExitStatus::kFailed, "auto-bracketing needs a decodable metering shot, got " +
                                           frames.front().file_name +
@@ -346,14 +352,15 @@ std::vector<double> RunEngine::Meter(int p) {
       continue;
     }
     std::ostringstream text;
-    text << "metering at " << Seconds(actual) << ": highlight " << m.highlight_level
-         << ", paper " << m.paper_level << " of full scale; bracket";
+    text << "metering at " << Seconds(actual) << ": highlight " << m.highlight_level << ", paper "
+         << m.paper_level << " of full scale; bracket";
     for (const double e : m.bracket_s) text << " " << Seconds(e);
     store_.LogEvent("info", p, text.str());
     return m.bracket_s;
   }
-  throw Stop{ExitStatus::kFailed, "auto-bracketing: the highlight stays saturated at the "
-                                  "shortest metering exposure; reduce the light"};
+  throw Stop{ExitStatus::kFailed,
+             "auto-bracketing: the highlight stays saturated at the "
+             "shortest metering exposure; reduce the light"};
 }
 
 void RunEngine::CapturePosition(int p) {

@@ -41,7 +41,7 @@ struct RetryPolicy {
   int max_attempts = 5;            // tries per move or shot, the first included
   double initial_backoff_s = 0.5;  // wait before the second try; doubles each time
   double max_backoff_s = 10;
-  int max_position_redos = 2;      // redos of one position whose frame failed its check
+  int max_position_redos = 2;  // redos of one position whose frame failed its check
   void Validate() const;
 };
 
@@ -55,15 +55,15 @@ struct RunOptions {
 
 struct RunProgress {
   RunState state = RunState::kIdle;
-  int position = 0;             // 0-based index of the position being worked on
-  int positions = 0;            // planned positions
-  int frame = 0;                // shot within the position's bracket
+  int position = 0;   // 0-based index of the position being worked on
+  int positions = 0;  // planned positions
+  int frame = 0;      // shot within the position's bracket
   int frames_per_position = 0;
-  int frames_recorded = 0;      // in the session, all runs included
+  int frames_recorded = 0;  // in the session, all runs included
   int frames_total = 0;
-  double eta_s = 0;             // model time left
-  double last_saturation = 0;   // saturated fraction of the last recorded frame
-  std::string message;          // the last event (fault, retry, ...)
+  double eta_s = 0;            // model time left
+  double last_saturation = 0;  // saturated fraction of the last recorded frame
+  std::string message;         // the last event (fault, retry, ...)
 };
 
 // Times in the engine's model of the session: device durations as the devices report them
@@ -72,16 +72,16 @@ struct RunTiming {
   double session_s = 0;      // from the first move to the last frame recorded
   double unavoidable_s = 0;  // longest move per position + settle + exposures + downloads
   double moves_s = 0, settle_s = 0, exposures_s = 0, downloads_s = 0;
-  double host_s = 0;         // checking, writing, recording
-  double wall_s = 0;         // real elapsed time of Run
+  double host_s = 0;  // checking, writing, recording
+  double wall_s = 0;  // real elapsed time of Run
   double Ratio() const { return unavoidable_s > 0 ? session_s / unavoidable_s : 0; }
 };
 
 struct RunSummary {
   ExitStatus status = ExitStatus::kFailed;
   std::string reason;
-  int positions_done = 0;  // this run
-  int frames_recorded = 0; // this run
+  int positions_done = 0;   // this run
+  int frames_recorded = 0;  // this run
   int retries = 0;
   int redos = 0;
   RunTiming timing;
@@ -143,7 +143,7 @@ class RunEngine {
   double clock_s_ = 0;
   RunTiming timing_;
   RunSummary summary_;
-  rig::AxisPositions readings_;  // last read-back of every axis
+  rig::AxisPositions readings_;           // last read-back of every axis
   std::vector<double> position_model_s_;  // model time per completed position (for the ETA)
 };
 

@@ -1,8 +1,8 @@
 #include "acquire/session_reader.h"
 
 #include <map>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "acquire/sqlite_db.h"
 #include "common/yaml_reader.h"
@@ -33,8 +33,7 @@ rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
     // The snapshot keeps the geometry file next to rig.yaml under its own name.
     const fs::path geometry_file = rig_dir / fs::path(geometry.AsString()).filename();
     if (!fs::exists(geometry_file)) {
-      geometry.Fail("the session's rig snapshot lacks the geometry file " +
-                    geometry_file.string());
+      geometry.Fail("the session's rig snapshot lacks the geometry file " + geometry_file.string());
     }
     description.geometry =
         rig::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
@@ -47,7 +46,8 @@ rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
 
 bool SessionContents::Complete() const {
   std::map<int, int> shots;
-  for (const RecordedFrame& f : frames) shots[f.position_index] = std::max(shots[f.position_index], f.bracket_index + 1);
+  for (const RecordedFrame& f : frames)
+    shots[f.position_index] = std::max(shots[f.position_index], f.bracket_index + 1);
   for (std::size_t p = 0; p < planned_positions.size(); ++p) {
     const int want = p < planned_brackets.size() ? static_cast<int>(planned_brackets[p].size()) : 0;
     if (want == 0 || shots[static_cast<int>(p)] != want) return false;
@@ -57,7 +57,8 @@ bool SessionContents::Complete() const {
 
 SessionContents ReadSession(const fs::path& dir) {
   const fs::path db_file = dir / "session.sqlite";
-  if (!fs::exists(db_file)) throw Error("'" + dir.string() + "' is not a session (no session.sqlite)");
+  if (!fs::exists(db_file))
+    throw Error("'" + dir.string() + "' is not a session (no session.sqlite)");
   SqliteDb db(db_file, SqliteDb::Mode::kReadOnly);
   SessionContents s;
   s.dir = fs::absolute(dir);

@@ -135,9 +135,12 @@ void ValidateSessionName(const std::string& name) {
 
 const char* ExitStatusName(ExitStatus status) {
   switch (status) {
-    case ExitStatus::kSuccess: return "success";
-    case ExitStatus::kAborted: return "aborted";
-    case ExitStatus::kFailed: return "failed";
+    case ExitStatus::kSuccess:
+      return "success";
+    case ExitStatus::kAborted:
+      return "aborted";
+    case ExitStatus::kFailed:
+      return "failed";
   }
   return "failed";
 }
@@ -158,16 +161,20 @@ std::string UtcNow() {
 SessionStore::SessionStore(fs::path dir, std::unique_ptr<SqliteDb> db)
     : dir_(std::move(dir)), db_(std::move(db)) {}
 
-std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& dir, const Plan& plan,
+std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, const Plan& plan,
                                                    const rig::RigDescription& rig) {
-  ValidateSessionName(dir.filename().string());
-  if (!dir.parent_path().empty()) fs::create_directories(dir.parent_path());
-  std::error_code ec;
-  // create_directory reports false for an existing directory: never reuse or overwrite one.
-  if (!fs::create_directory(dir, ec) || ec) {
-    throw Error("cannot create session '" + dir.string() + "': " +
-                (ec ? ec.message() : "it already exists (use --resume to continue it)"));
-  }
+  ValidateSessionName(final_dir.filename().string());
+  const fs::path parent = final_dir.parent_path().empty() ? fs::path(".") : final_dir.parent_path();
+  fs::create_directories(parent);
+  const std::string exists = "cannot create session '" + final_dir.string() +
+                             "': it already exists (use --resume to continue it)";
+  if (fs::exists(final_dir)) throw Error(exists);
+  // Built under a hidden temporary name and renamed when complete, so that a crash during
+  // creation never leaves a half-made session under the real name.
+  const fs::path dir =
+      parent / ("." + final_dir.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directory(dir);
   fs::create_directory(dir / "frames");
   fs::create_directory(dir / "rig");
   WriteFileAtomically(dir / "plan.yaml", plan.text);
@@ -206,11 +213,11 @@ std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& dir, const Pl
       .Run();
   nlohmann::json positions = nlohmann::json::array();
   for (const PlannedPosition& p : plan.positions) positions.push_back(AxesJson(p.axes));
-  nlohmann::json exposures = plan.auto_bracket ? nlohmann::json("auto")
-                                               : nlohmann::json(plan.exposures_s);
+  nlohmann::json exposures =
+      plan.auto_bracket ? nlohmann::json("auto") : nlohmann::json(plan.exposures_s);
   Statement(*db,
             "INSERT INTO session VALUES (1, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)")
-      .Bind(1, dir.filename().string())
+      .Bind(1, final_dir.filename().string())
       .Bind(2, plan.sample)
       .Bind(3, plan.operator_name)
       .Bind(4, plan.notes)
@@ -234,8 +241,18 @@ std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& dir, const Pl
         .Run();
   }
   tx.Commit();
+  db.reset();  // SQLite names its -wal and -shm files by path: close before the rename
+  SyncDirectory(dir / "rig");
   SyncDirectory(dir);
-  return std::unique_ptr<SessionStore>(new SessionStore(dir, std::move(db)));
+  // rename(2) refuses a non-empty target: a session that appeared meanwhile is kept.
+  if (::rename(dir.c_str(), final_dir.c_str()) != 0) {
+    const int err = errno;
+    fs::remove_all(dir);
+    if (err == EEXIST || err == ENOTEMPTY) throw Error(exists);
+    ThrowSystem("cannot create session", final_dir, err);
+  }
+  SyncDirectory(parent);
+  return Open(final_dir);
 }
 
 std::unique_ptr<SessionStore> SessionStore::Open(const fs::path& dir) {
@@ -246,7 +263,8 @@ std::unique_ptr<SessionStore> SessionStore::Open(const fs::path& dir) {
   db->Exec("PRAGMA synchronous=FULL");
   Statement check(*db, "SELECT COUNT(*) FROM session");
   if (!check.Step() || check.Int(0) != 1) {
-    throw Error("'" + dir.string() + "' has no start record (its creation was interrupted); "
+    throw Error("'" + dir.string() +
+                "' has no start record (its creation was interrupted); "
                 "remove it and start again");
   }
   return std::unique_ptr<SessionStore>(new SessionStore(dir, std::move(db)));
@@ -332,8 +350,8 @@ std::set<int> SessionStore::PrepareResume() {
       .Bind(1, UtcNow())
       .Bind(2, run_id_)
       .Bind(3, "resume: " + std::to_string(complete.size()) + " positions complete, " +
-                   std::to_string(discarded) + " incomplete discarded, " +
-                   std::to_string(removed) + " unrecorded files removed")
+                   std::to_string(discarded) + " incomplete discarded, " + std::to_string(removed) +
+                   " unrecorded files removed")
       .Run();
   return complete;
 }
@@ -359,8 +377,8 @@ std::string SessionStore::FrameFileName(int position, int bracket, int file_inde
 }
 
 std::string SessionStore::WriteFrame(const FrameToRecord& frame, std::span<const std::byte> bytes) {
-  const std::string rel = FrameFileName(frame.position_index, frame.bracket_index,
-                                        frame.file_index, frame.camera_file_name);
+  const std::string rel = FrameFileName(frame.position_index, frame.bracket_index, frame.file_index,
+                                        frame.camera_file_name);
   const fs::path final_path = dir_ / rel;
   const fs::path tmp = final_path.parent_path() / ("." + final_path.filename().string() + ".tmp");
   test_hooks::BeforeFrameWrite();

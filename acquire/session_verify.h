@@ -9,10 +9,10 @@
 namespace brdfrig::acquire {
 
 struct VerifyReport {
-  int checked = 0;                      // recorded files hashed
-  std::vector<std::string> missing;     // recorded, but the file is gone
-  std::vector<std::string> changed;     // the file's hash differs from the record
-  std::vector<std::string> extra;       // in frames/ but never recorded (incl. temporaries)
+  int checked = 0;                            // recorded files hashed
+  std::vector<std::string> missing;           // recorded, but the file is gone
+  std::vector<std::string> changed;           // the file's hash differs from the record
+  std::vector<std::string> extra;             // in frames/ but never recorded (incl. temporaries)
   std::vector<std::string> snapshot_changed;  // rig snapshot files altered since capture
   bool ok() const {
     return missing.empty() && changed.empty() && extra.empty() && snapshot_changed.empty();

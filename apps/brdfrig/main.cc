@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/brdfrig/acquire_commands.h"
 #include "apps/brdfrig/evaluate_commands.h"
 #include "apps/brdfrig/reconstruct_commands.h"
 #include "apps/brdfrig/render_commands.h"
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   brdfrig::apps::RegisterRenderCommands(app);
   brdfrig::apps::RegisterReconstructCommands(app);
   brdfrig::apps::RegisterEvaluateCommands(app);
+  brdfrig::apps::RegisterAcquireCommands(app);
 
   try {
     app.parse(argc, argv);

@@ -65,7 +65,8 @@ TEST(SessionTest, CaptureRecordsEveryFrameAndReadsBackThroughReadSession) {
 }
 
 TEST(SessionTest, NamesThatEscapeOrHideAreRefusedAndSessionsAreNeverOverwritten) {
-  for (const std::string& bad : std::vector<std::string>{"", "..", ".", "../x", "a/b", ".hidden", "a..b", "-x", "a b",
+  for (const std::string& bad :
+       std::vector<std::string>{"", "..", ".", "../x", "a/b", ".hidden", "a..b", "-x", "a b",
                                 "a\\b", std::string(101, 'a')}) {
     EXPECT_FALSE(IsValidSessionName(bad)) << bad;
   }
