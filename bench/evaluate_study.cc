@@ -15,7 +15,6 @@
 namespace {
 
 using namespace brdfrig;
-using evaluate::Fixed;
 
 std::vector<double> Spread(int count, double from, double to) {
   if (count == 1) return {0.5 * (from + to)};

@@ -27,14 +27,6 @@ std::string Escape(const std::string& text) {
 
 }  // namespace
 
-std::string Fixed(double value, int decimals) {
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  if (!std::isfinite(value)) return "n/a";
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  return buffer;
-}
-
 std::string Report::Html() const {
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>" << Escape(title)

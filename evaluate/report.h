@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "common/format.h"
+
 namespace brdfrig::evaluate {
 
 struct Table {
@@ -31,8 +33,5 @@ struct Report {
   // Writes report.html (atomically) into `dir`.
   void WriteHtml(const std::filesystem::path& dir) const;
 };
-
-// Number formatting for tables: fixed decimals, "inf"/"n/a" for non-finite.
-std::string Fixed(double value, int decimals);
 
 }  // namespace brdfrig::evaluate

@@ -69,22 +69,36 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
     inverse_times[i] = 1.0f / times[i];
   }
   const int width = out->radiance.cols;
-  // Per (exposure, channel, code) weighted terms, for 8-bit inputs.
-  std::vector<float> lut_num, lut_den;
+  // Integer codes: every weighted term comes from a table, so the pixel loop has no division
+  // and no branch. 8-bit: (exposure, channel, code) → {w·S/t, w}, the hat weight included.
+  // 16-bit linear: the value is the same for every channel and exposure, so one shared table
+  // per code holds {S/(S+f), 1/(S+f)} (zero when clipped or black) and the exposure enters as
+  // w·S/t = t·S/(S+f) and w = t²/(S+f).
+  struct Terms {
+    float num = 0, den = 0;
+  };
+  std::vector<Terms> table8, table16;
+  std::vector<float> times_squared(n);
+  for (std::size_t i = 0; i < n; ++i) times_squared[i] = times[i] * times[i];
   if constexpr (std::is_same_v<T, uchar>) {
-    lut_num.assign(n * 3 * 256, 0.0f);
-    lut_den.assign(n * 3 * 256, 0.0f);
+    table8.resize(n * 3 * 256);
     for (std::size_t i = 0; i < n; ++i) {
       for (int c = 0; c < 3; ++c) {
         for (int code = 0; code < 256; ++code) {
           const float s = decode.Value(static_cast<T>(code), c);
           if (!(s < saturation) || s <= black) continue;
-          const float w = decode.Weight(static_cast<T>(code)) * times[i] * times[i] / (s + floor);
-          const std::size_t at = (i * 3 + static_cast<std::size_t>(c)) * 256 + code;
-          lut_num[at] = w * s * inverse_times[i];
-          lut_den[at] = w;
+          const float w = decode.Weight(static_cast<T>(code)) * times_squared[i] / (s + floor);
+          table8[(i * 3 + static_cast<std::size_t>(c)) * 256 + code] = {w * s * inverse_times[i],
+                                                                        w};
         }
       }
+    }
+  } else if constexpr (std::is_same_v<T, ushort>) {
+    table16.resize(65536);
+    for (int code = 0; code < 65536; ++code) {
+      const float s = decode.Value(static_cast<T>(code), 0);
+      if (!(s < saturation) || s <= black) continue;
+      table16[static_cast<std::size_t>(code)] = {s / (s + floor), 1.0f / (s + floor)};
     }
   }
   ParallelFor(
@@ -102,19 +116,24 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
             for (int c = 0; c < 3; ++c) {
               float num = 0, den = 0;
               if constexpr (std::is_same_v<T, uchar>) {
-                // 8-bit: every (exposure, channel, code) term is a table lookup.
                 for (std::size_t i = 0; i < n; ++i) {
-                  const std::size_t at =
-                      (i * 3 + static_cast<std::size_t>(c)) * 256 + rows[i][x][c];
-                  num += lut_num[at];
-                  den += lut_den[at];
+                  const Terms& t =
+                      table8[(i * 3 + static_cast<std::size_t>(c)) * 256 + rows[i][x][c]];
+                  num += t.num;
+                  den += t.den;
+                }
+              } else if constexpr (std::is_same_v<T, ushort>) {
+                for (std::size_t i = 0; i < n; ++i) {
+                  const Terms& t = table16[rows[i][x][c]];
+                  num += times[i] * t.num;
+                  den += times_squared[i] * t.den;
                 }
               } else {
                 for (std::size_t i = 0; i < n; ++i) {
                   const T code = rows[i][x][c];
                   const float s = decode.Value(code, c);
                   if (!(s < saturation) || s <= black) continue;
-                  const float w = decode.Weight(code) * times[i] * times[i] / (s + floor);
+                  const float w = decode.Weight(code) * times_squared[i] / (s + floor);
                   num += w * s * inverse_times[i];
                   den += w;
                 }

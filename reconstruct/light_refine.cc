@@ -111,6 +111,20 @@ LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const
         new LightLobeResidual{&pixel, base, d0, e1, e2, distance});
     problem.AddResidualBlock(cost, loss, light, lobes[0].data(), lobes[1].data(), lobes[2].data());
   }
+  // Bounds keep every trial step finite (exp of a wild log-amplitude overflows): amplitudes
+  // within e^±10 of the start, the lobe width up to pi, the light within ~30° of its start.
+  for (auto& lobe : lobes) {
+    for (int k = 0; k < 2; ++k) {
+      problem.SetParameterLowerBound(lobe.data(), k, lobe[static_cast<std::size_t>(k)] - 10);
+      problem.SetParameterUpperBound(lobe.data(), k, lobe[static_cast<std::size_t>(k)] + 10);
+    }
+    problem.SetParameterLowerBound(lobe.data(), 2, std::min(lobe[2], std::log(1e-4)));
+    problem.SetParameterUpperBound(lobe.data(), 2, std::max(lobe[2], std::log(M_PI)));
+  }
+  for (int k = 0; k < 2; ++k) {
+    problem.SetParameterLowerBound(light, k, -0.5);
+    problem.SetParameterUpperBound(light, k, 0.5);
+  }
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = options.max_iterations;

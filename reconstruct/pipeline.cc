@@ -10,6 +10,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/exr_io.h"
+#include "common/format.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -173,6 +174,12 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
       }
       report.reprojection_rms_px = pose.reprojection_rms_px;
       report.camera_disagreement_m = pose.nominal_disagreement_m;
+      if (pose.nominal_disagreement_m > options.target.warn_camera_offset_m) {
+        report.warnings.push_back(
+            "camera pose " + Fixed(pose.nominal_disagreement_m * 1e3, 1) +
+            " mm from the rig's nominal: check the rig file, or the cut-out's "
+            "edges in badly exposed photos");
+      }
       const PlaneView view(nominal.intrinsics, pose.pose);
       {
         StageTimer timer(&seconds, "light");
@@ -184,6 +191,12 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
         StageTimer timer(&seconds, "radiometry");
         report.radiometry = CalibrateFromPaper(hdr.radiance, hdr.valid, view, report.light.position,
                                                nominal.target, options.radiometry);
+      }
+      if (report.radiometry.relative_spread > options.radiometry.warn_spread) {
+        report.warnings.push_back(
+            "paper brightness spread " + Fixed(report.radiometry.relative_spread, 2) +
+            ": the paper is noisy, clipped or unevenly lit in every exposure, so the BRDF scale "
+            "is unreliable (bracket so that the paper is well exposed in one exposure)");
       }
       {
         StageTimer timer(&seconds, "samples");
@@ -258,6 +271,9 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     inputs.back().positions.push_back(data.report.index);
     result.positions.push_back(data.report);
   }
+  // Reports in capture order, skipped and used alike.
+  std::sort(result.positions.begin(), result.positions.end(),
+            [](const PositionReport& a, const PositionReport& b) { return a.index < b.index; });
 
   std::vector<SliceFit> fits;
   {

@@ -35,6 +35,7 @@ void RadiometryOptions::Validate() const {
   if (!(margin >= 0 && margin < 0.5))
     throw OptionsError("RadiometryOptions.margin must be in [0, 0.5)");
   if (stride < 1) throw OptionsError("RadiometryOptions.stride must be >= 1");
+  if (!(warn_spread > 0)) throw OptionsError("RadiometryOptions.warn_spread must be > 0");
 }
 
 Radiometry CalibrateFromPaper(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,

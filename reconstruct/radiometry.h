@@ -16,6 +16,9 @@ namespace brdfrig::reconstruct {
 struct RadiometryOptions {
   double margin = 0.15;  // fraction of the paper band (cut-out edge to paper edge) left out
   int stride = 2;        // use every stride-th pixel in x and y
+  // Paper spread (median absolute deviation / median) above which the calibration is flagged:
+  // a clean paper is within a few percent; more means noise, clipping or uneven light.
+  double warn_spread = 0.15;
   // k as a quadratic surface over the image, fitted to the paper ring around the cut-out and
   // evaluated inside it: absorbs vignetting and uneven light (a flat field from the paper).
   // false: one k per channel (the median).

@@ -102,6 +102,9 @@ void TargetOptions::Validate() const {
     throw OptionsError("TargetOptions.corner_skip must be in [0, 0.4)");
   }
   if (!(profile_step_px > 0)) throw OptionsError("TargetOptions.profile_step_px must be > 0");
+  if (!(warn_camera_offset_m > 0)) {
+    throw OptionsError("TargetOptions.warn_camera_offset_m must be > 0");
+  }
   if (!(min_log_step > 0)) throw OptionsError("TargetOptions.min_log_step must be > 0");
   if (!(min_edge_fraction > 0 && min_edge_fraction <= 1)) {
     throw OptionsError("TargetOptions.min_edge_fraction must be in (0, 1]");

@@ -25,6 +25,9 @@ struct TargetOptions {
   double min_log_step = 0.2;        // weakest accepted step in ln(luminance) across an edge
   double min_edge_fraction = 0.25;  // fewest accepted profiles per edge, as a fraction
   double max_reprojection_px = 2.0;  // a pose worse than this is refused
+  // A measured camera this far from the rig's nominal one is used, with a warning: either the
+  // rig file is off or the edges were found on badly exposed photos.
+  double warn_camera_offset_m = 0.02;
   void Validate() const;
 };
 

@@ -2,6 +2,7 @@
 
 #include "rig/backend_registry.h"
 #include "rig/drive_profile.h"
+#include "rig/gphoto2_camera.h"
 #include "rig/modbus_axis.h"
 #include "rig/modbus_light.h"
 
@@ -34,9 +35,16 @@ std::unique_ptr<Light> OpenModbusLight(const YamlNode& settings, const DeviceCon
   return std::make_unique<ModbusLight>(SharedModbusLink(link), slave, address);
 }
 
+std::unique_ptr<Camera> OpenGphoto2Camera(const YamlNode& settings, const DeviceContext&) {
+  const Gphoto2Options options = ReadGphoto2Options(settings);
+  settings.Finish();
+  return std::make_unique<Gphoto2Camera>(options);
+}
+
 }  // namespace
 
 void RegisterHardwareBackends() {
+  RegisterCameraBackend("gphoto2", OpenGphoto2Camera);
   RegisterAxisBackend("modbus", OpenModbusAxis);
   RegisterLightBackend("modbus", OpenModbusLight);
 }

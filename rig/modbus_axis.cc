@@ -17,6 +17,12 @@ std::string Degrees(double radians) {
   return text;
 }
 
+std::string Number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
 std::string Hex(int code) {
   char text[16];
   std::snprintf(text, sizeof(text), "0x%02X", code);
@@ -181,9 +187,8 @@ DriveReading ModbusAxis::WaitFor(const std::string& what,
     if (done(r)) return r;
     if (std::chrono::steady_clock::now() > deadline) {
       Fail(AxisError::Kind::kTimeout, 0,
-           what + " did not finish within " +
-               std::to_string(options_.move_timeout.count() / 1000.0) + " s (now at " +
-               Degrees(ToRadians(r.position_steps)) +
+           what + " did not finish within " + Number(options_.move_timeout.count() / 1000.0) +
+               " s (now at " + Degrees(ToRadians(r.position_steps)) +
                (r.moving ? ", still moving" : ", not moving") + ")");
     }
     std::this_thread::sleep_for(options_.poll_interval);
@@ -195,7 +200,7 @@ MoveReport ModbusAxis::MoveTo(double angle) {
   if (!(deg >= options_.min_deg && deg <= options_.max_deg)) {
     throw AxisError(AxisError::Kind::kLimits, 0,
                     name_ + ": " + Degrees(angle) + " is outside the configured limits [" +
-                        std::to_string(options_.min_deg) + ", " + std::to_string(options_.max_deg) +
+                        Number(options_.min_deg) + ", " + Number(options_.max_deg) +
                         "] deg; nothing was moved");
   }
   const auto target = static_cast<int32_t>(std::lround(deg * options_.steps_per_degree));

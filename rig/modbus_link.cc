@@ -189,9 +189,9 @@ void ModbusLink::Run(int slave, const char* what, int address, Request request) 
     // A late or partial answer may still arrive: start the next attempt on a fresh connection.
     Disconnect();
   }
-  throw ModbusError(
-      last.kind(), last.exception_code(),
-      std::string(last.what()) + " (after " + std::to_string(options_.attempts) + " attempts)");
+  throw ModbusError(last.kind(), last.exception_code(),
+                    std::string(last.what()) + " (after " + std::to_string(options_.attempts) +
+                        (options_.attempts == 1 ? " attempt)" : " attempts)"));
 }
 
 std::vector<uint16_t> ModbusLink::ReadRegisters(int slave, int address, int count) {

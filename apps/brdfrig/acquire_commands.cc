@@ -11,7 +11,6 @@
 #include "acquire/capture.h"
 #include "acquire/plan_check.h"
 #include "acquire/session_verify.h"
-#include "apps/brdfrig/backends.h"
 #include "apps/brdfrig/progress_line.h"
 
 namespace brdfrig::apps {
@@ -94,7 +93,6 @@ void RegisterAcquireCommands(CLI::App& app) {
   capture->add_option("--max-attempts", args->max_attempts,
                       "Tries per move or shot on recoverable faults (default 5)");
   capture->callback([args] {
-    RegisterBackends();
     acquire::CaptureOptions options;
     options.rig_file = args->rig;
     options.plan_file = args->plan;

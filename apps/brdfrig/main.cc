@@ -9,8 +9,11 @@
 #include "apps/brdfrig/evaluate_commands.h"
 #include "apps/brdfrig/reconstruct_commands.h"
 #include "apps/brdfrig/render_commands.h"
+#include "apps/brdfrig/rig_commands.h"
 #include "apps/brdfrig/sim_commands.h"
 #include "common/error.h"
+#include "rig/hardware_backends.h"
+#include "sim/devices.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"brdfrig: measure how a flat material reflects light"};
@@ -20,7 +23,10 @@ int main(int argc, char** argv) {
   brdfrig::apps::RegisterRenderCommands(app);
   brdfrig::apps::RegisterReconstructCommands(app);
   brdfrig::apps::RegisterEvaluateCommands(app);
+  brdfrig::apps::RegisterRigCommands(app);
   brdfrig::apps::RegisterAcquireCommands(app);
+  brdfrig::sim::RegisterSimBackends();
+  brdfrig::rig::RegisterHardwareBackends();
 
   try {
     app.parse(argc, argv);

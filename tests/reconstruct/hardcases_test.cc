@@ -195,5 +195,80 @@ TEST(HardCases, Noisy8BitCaptureRecoversTheResponseAndFitsFinite) {
   EXPECT_EQ(r.material.slices.size(), 3u);
 }
 
+TEST(HardCases, VeryDarkSampleIsMeasuredAtItsLevel) {
+  // Albedo 0.02: the sample sits near the bottom of every exposure, where read noise and
+  // quantization dominate. The radiometry must still put it at albedo/pi.
+  SceneSpec spec;
+  spec.brdf = "{model: lambert, albedo: [0.02, 0.015, 0.01]}";
+  spec.effects = kRealistic;
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("dark"), spec), {});
+  ExpectFinite(r.material);
+  for (const brdf::Slice& s : r.material.slices) {
+    EXPECT_NEAR(s.channel[0].a2, 0.02 / M_PI, 0.05 * 0.02 / M_PI);  // 5% at 1/50 of the paper
+    EXPECT_NEAR(s.channel[2].a2, 0.01 / M_PI, 0.05 * 0.01 / M_PI);
+  }
+}
+
+TEST(HardCases, HighlightAtTheEdgeOfTheCutoutIsMeasuredOrDeclared) {
+  // camera 20°, light -29°: the mirror point lies about 3 mm inside a 100 mm cut-out's edge,
+  // so part of the lobe is under the paper.
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.effects = kRealistic;
+  spec.positions = "[{camera_arm: 20, light_arm: -29}, {camera_arm: 35, light_arm: -35}]";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("edge"), spec), {});
+  ExpectFinite(r.material);
+  ASSERT_TRUE(r.positions[0].used) << r.positions[0].skipped_reason;
+  const LightEstimate& light = r.positions[0].light;
+  if (light.from_highlight) {
+    // Measured: then it must be right (the nominal light is the truth in this scene).
+    EXPECT_LT(light.nominal_disagreement_rad, 1.0 * M_PI / 180);
+  } else {
+    EXPECT_TRUE(AnyWarningContains(r, "edge of the cut-out"));
+  }
+}
+
+TEST(HardCases, ExtremeExposureRatioMergesToTheSameMaterial) {
+  // 1 : 1000 between the shortest and longest exposure, only two of them: the merge has no
+  // overlap where both are well exposed. The fit must agree with a well-bracketed capture.
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  spec.effects = kRealistic;
+  spec.positions = "[{camera_arm: 30, light_arm: -30}]";
+  const ReconstructionResult reference =
+      Reconstruct(SimulateCapture(TempDir("ratio_ref"), spec), {});
+  spec.exposures = "[0.0001, 0.1]";
+  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("ratio"), spec), {});
+  ExpectFinite(r.material);
+  ASSERT_EQ(r.material.slices.size(), 1u);
+  for (int c = 0; c < 3; ++c) {
+    const brdf::LobeParams& got = r.material.slices[0].channel[c];
+    const brdf::LobeParams& want = reference.material.slices[0].channel[c];
+    EXPECT_NEAR(got.a1, want.a1, 0.1 * want.a1) << "channel " << c;
+    EXPECT_NEAR(got.h, want.h, 0.1 * want.h) << "channel " << c;
+  }
+  // 1 : 10000: the paper clips in the long exposure and is a few codes in the short one, so
+  // its edges and its brightness are noise. The result is still finite, and the diagnostics
+  // say the scale and the pose cannot be trusted.
+  spec.exposures = "[0.00002, 0.2]";
+  const ReconstructionResult bad = Reconstruct(SimulateCapture(TempDir("ratio_bad"), spec), {});
+  ExpectFinite(bad.material);
+  EXPECT_TRUE(AnyWarningContains(bad, "paper brightness spread"));
+}
+
+TEST(HardCases, OneWholePositionMissingIsSkippedAndTheRestFitted) {
+  SceneSpec spec;
+  spec.brdf = kGgx;
+  CaptureSet capture = SimulateCapture(TempDir("missing_position"), spec);
+  for (const BracketFrame& frame : capture.positions[1].frames) {
+    std::filesystem::remove(frame.file);
+  }
+  const ReconstructionResult r = Reconstruct(capture, {});
+  ExpectFinite(r.material);
+  EXPECT_EQ(r.material.slices.size(), 2u);
+  EXPECT_FALSE(r.positions[1].used);
+  EXPECT_TRUE(AnyWarningContains(r, capture.positions[1].frames[0].file.filename().string()));
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct

@@ -1,0 +1,68 @@
+#include "apps/brdfrig/rig_commands.h"
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "common/error.h"
+#include "rig/rig_tools.h"
+#include "sim/drive_server_tool.h"
+
+namespace brdfrig::apps {
+namespace {
+
+struct RigArgs {
+  std::string rig;
+  std::string axis;
+  double angle_deg = 0;
+  std::string exposure;
+  std::string output;
+  sim::SimDriveOptions simdrive;
+};
+
+}  // namespace
+
+void RegisterRigCommands(CLI::App& app) {
+  auto args = std::make_shared<RigArgs>();
+  CLI::App* rig = app.add_subcommand("rig", "Check and drive the capture rig by hand");
+  rig->require_subcommand(1);
+
+  CLI::App* check = rig->add_subcommand(
+      "check", "Find every device of rig.yaml and report model, port, positions and settings");
+  check->add_option("--rig", args->rig, "Rig file (rig.yaml)")->required();
+  check->callback([args] {
+    const rig::RigCheckReport report = rig::CheckRig(args->rig);
+    std::printf("%s\n", report.ToString().c_str());
+    if (!report.ok()) throw Error("rig check failed: see the FAIL lines above");
+  });
+
+  CLI::App* move = rig->add_subcommand("move", "Move one axis to an absolute angle");
+  move->add_option("--rig", args->rig, "Rig file (rig.yaml)")->required();
+  move->add_option("axis", args->axis, "Axis name as in rig.yaml")->required();
+  move->add_option("angle", args->angle_deg, "Target angle in degrees")->required();
+  move->callback([args] {
+    const rig::MoveReport report = rig::MoveAxis(args->rig, args->axis, args->angle_deg);
+    std::printf("%s at %.3f deg after %.2f s\n", args->axis.c_str(),
+                report.position * 180.0 / 3.14159265358979323846, report.duration_s);
+  });
+
+  CLI::App* shoot = rig->add_subcommand("shoot", "Take one photo with the rig's camera");
+  shoot->add_option("--rig", args->rig, "Rig file (rig.yaml)")->required();
+  shoot->add_option("--exposure", args->exposure, "Exposure time, e.g. 1/60 or 0.5")->required();
+  shoot->add_option("-o,--output", args->output, "Output file (RAW+JPEG: both, by extension)")
+      ->required();
+  shoot->callback([args] {
+    std::printf("%s\n", rig::Shoot(args->rig, args->exposure, args->output).ToString().c_str());
+  });
+
+  CLI::App* simdrive = rig->add_subcommand(
+      "simdrive", "Serve a simulated Modbus drive (TCP on loopback or RTU on a pty) until Ctrl-C");
+  simdrive->add_option("--profile", args->simdrive.profile,
+                       "Drive profile: oriental_az_direct, generic, or a .yaml file");
+  simdrive->add_option("--tcp", args->simdrive.tcp_port, "Serve TCP on 127.0.0.1:PORT (0: any)");
+  simdrive->add_flag("--pty", args->simdrive.pty, "Serve RTU on a new pseudo-terminal");
+  simdrive->add_option("--slave", args->simdrive.slave, "Modbus slave id (default 1)");
+  simdrive->callback([args] { sim::RunSimulatedDrive(args->simdrive); });
+}
+
+}  // namespace brdfrig::apps

@@ -1,0 +1,19 @@
+// Number formatting for reports, tables and diagnostics.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace brdfrig {
+
+// Fixed decimals; "inf"/"-inf"/"n/a" for non-finite values (a table never shows "nan").
+inline std::string Fixed(double value, int decimals) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  if (!std::isfinite(value)) return "n/a";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
+  return buffer;
+}
+
+}  // namespace brdfrig
