@@ -1,7 +1,5 @@
 #include "reconstruct/batch.h"
 
-#include <openssl/evp.h>
-
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -12,6 +10,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/sha256.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -68,31 +67,15 @@ bool IsCaptureDirectory(const fs::path& dir) {
 CaptureSet LoadCapture(const fs::path& dir) { return LoadSimulatedCapture(dir); }
 
 std::string CaptureFingerprint(const CaptureSet& capture) {
-  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
-  EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
-  std::vector<char> buffer(1 << 20);
+  Sha256 hash;
   for (const CapturePosition& position : capture.positions) {
     for (const BracketFrame& frame : position.frames) {
-      const std::string name =
-          frame.file.filename().string() + "@" + std::to_string(frame.exposure_s);
-      EVP_DigestUpdate(ctx.get(), name.data(), name.size());
-      std::ifstream in(frame.file, std::ios::binary);
-      while (in) {
-        in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
-      }
+      hash.Update(frame.file.filename().string() + "@" + std::to_string(frame.exposure_s));
+      // A missing photo hashes as empty, as before; the reconstruction reports it.
+      if (fs::exists(frame.file)) hash.UpdateFile(frame.file);
     }
   }
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  EVP_DigestFinal_ex(ctx.get(), digest, &length);
-  std::string hex;
-  char byte[3];
-  for (unsigned int i = 0; i < length; ++i) {
-    std::snprintf(byte, sizeof(byte), "%02x", digest[i]);
-    hex += byte;
-  }
-  return hex;
+  return hash.HexDigest();
 }
 
 std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "apps/brdfrig/acquire_commands.h"
 #include "apps/brdfrig/evaluate_commands.h"
 #include "apps/brdfrig/reconstruct_commands.h"
 #include "apps/brdfrig/render_commands.h"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   brdfrig::apps::RegisterReconstructCommands(app);
   brdfrig::apps::RegisterEvaluateCommands(app);
   brdfrig::apps::RegisterRigCommands(app);
+  brdfrig::apps::RegisterAcquireCommands(app);
   brdfrig::sim::RegisterSimBackends();
   brdfrig::rig::RegisterHardwareBackends();
 

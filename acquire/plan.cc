@@ -1,0 +1,122 @@
+#include "acquire/plan.h"
+
+#include <cmath>
+
+#include "common/atomic_file.h"
+
+namespace brdfrig::acquire {
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+std::vector<PlannedPosition> ParseExplicitPositions(const YamlNode& list) {
+  std::vector<PlannedPosition> positions;
+  for (const YamlNode& item : list.Elements()) {
+    if (!item.IsMap()) item.Fail("expected a mapping from axis name to degrees");
+    PlannedPosition position;
+    position.line = item.line();
+    for (const std::string& axis : item.Keys()) {
+      position.axes[axis] = item.Required(axis).AsDouble() * kDegree;
+    }
+    if (position.axes.empty()) item.Fail("a position needs at least one axis angle");
+    positions.push_back(std::move(position));
+  }
+  return positions;
+}
+
+std::vector<PlannedPosition> ParseSymmetricArms(const YamlNode& preset) {
+  const double from = preset.Required("from_deg").AsDouble();
+  const double to = preset.Required("to_deg").AsDouble();
+  const YamlNode count_node = preset.Required("count");
+  const int count = count_node.AsInt();
+  if (count < 1) count_node.Fail("count must be at least 1");
+  if (count == 1 && from != to) count_node.Fail("count 1 needs from_deg == to_deg");
+  const std::string camera = preset.Get("camera_axis", "camera_arm");
+  const std::string light = preset.Get("light_axis", "light_arm");
+  preset.Finish();
+  if (camera == light) preset.Fail("camera_axis and light_axis must differ");
+  std::vector<PlannedPosition> positions;
+  for (int i = 0; i < count; ++i) {
+    const double theta = count == 1 ? from : from + (to - from) * i / (count - 1);
+    PlannedPosition position;
+    position.line = preset.line();
+    // Camera at θ on one side of the normal, light at θ on the other: the mirror
+    // configuration, so the highlight sits at the sample centre.
+    position.axes[camera] = theta * kDegree;
+    position.axes[light] = -theta * kDegree;
+    positions.push_back(std::move(position));
+  }
+  return positions;
+}
+
+void ParseExposures(const YamlNode& node, Plan* plan) {
+  plan->exposures_line = node.line();
+  if (node.IsSequence()) {
+    for (const YamlNode& item : node.Elements()) {
+      plan->exposures_s.push_back(item.Positive(item.AsDouble()));
+    }
+    if (plan->exposures_s.empty()) node.Fail("the bracket needs at least one exposure");
+    return;
+  }
+  if (!node.IsMap()) node.Fail("expected a list of exposure times (s) or {auto: {...}}");
+  const YamlNode settings = node.Required("auto");
+  node.Finish();
+  plan->auto_bracket = true;
+  AutoBracket& a = plan->auto_settings;
+  if (!settings.IsMap()) settings.Fail("expected a mapping (count, metering_s, ...)");
+  if (auto count = settings.Optional("count")) {
+    a.count = count->AsInt();
+    if (a.count < 1 || a.count > 9) count->Fail("count must be between 1 and 9");
+  }
+  if (auto m = settings.Optional("metering_s")) a.metering_s = m->Positive(m->AsDouble());
+  if (auto h = settings.Optional("highlight_max"))
+    a.highlight_max = h->InRange(h->AsDouble(), 0.05, 1);
+  if (auto p = settings.Optional("paper_level")) a.paper_level = p->InRange(p->AsDouble(), 0.01, 1);
+  settings.Finish();
+}
+
+}  // namespace
+
+Plan ParsePlan(const YamlNode& root, const std::string& text) {
+  if (!root.IsMap()) root.Fail("a plan is a mapping (sample, positions, exposures, ...)");
+  Plan plan;
+  plan.file = root.file();
+  plan.text = text;
+  plan.sample = root.Required("sample").AsString();
+  if (plan.sample.empty()) root.Required("sample").Fail("the sample name must not be empty");
+  plan.operator_name = root.Get("operator", "");
+  plan.notes = root.Get("notes", "");
+  const YamlNode positions = root.Required("positions");
+  if (positions.IsSequence()) {
+    plan.positions = ParseExplicitPositions(positions);
+  } else if (positions.IsMap()) {
+    plan.positions = ParseSymmetricArms(positions.Required("symmetric_arms"));
+    positions.Finish();
+  } else {
+    positions.Fail("expected a list of positions or {symmetric_arms: {...}}");
+  }
+  if (plan.positions.empty()) positions.Fail("the plan has no position");
+  if (auto exposures = root.Optional("exposures")) {
+    ParseExposures(*exposures, &plan);
+  } else {
+    plan.auto_bracket = true;  // three exposures by default, decided by metering
+    plan.exposures_line = root.line();
+  }
+  if (auto settle = root.Optional("settle_s")) {
+    plan.settle_s = settle->InRange(settle->AsDouble(), 0, 60);
+  }
+  plan.parallel_moves = root.Get("parallel_moves", true);
+  root.Finish();
+  return plan;
+}
+
+Plan LoadPlanFile(const std::filesystem::path& path) {
+  const std::string text = ReadFileToString(path);
+  return ParsePlan(LoadYamlString(text, path.string()), text);
+}
+
+Plan LoadPlanString(const std::string& text, const std::string& source_name) {
+  return ParsePlan(LoadYamlString(text, source_name), text);
+}
+
+}  // namespace brdfrig::acquire

@@ -1,0 +1,70 @@
+// plan.yaml: what one capture session does. Angles in the file are degrees (like every
+// human-written file of the project); in code they are radians.
+//
+//   sample: red-paint-01            # required
+//   operator: alice                 # optional
+//   notes: "second coat"            # optional
+//   positions:                      # a list of axis angles (degrees) per position ...
+//     - {camera_arm: 15, light_arm: -15}
+//     - {camera_arm: 35, light_arm: -35}
+//   # ... or a preset: camera_axis = θ and light_axis = −θ for `count` θ in [from, to]
+//   # positions: {symmetric_arms: {from_deg: 20, to_deg: 60, count: 5,
+//   #                              camera_axis: camera_arm, light_axis: light_arm}}
+//   exposures: [0.001, 0.008, 0.0666667]   # seconds, the bracket of every position, or
+//   # exposures: {auto: {count: 3, metering_s: 0.008, highlight_max: 0.8, paper_level: 0.4}}
+//   settle_s: 0.2                   # wait after a move before the first shot (default 0.2)
+//   parallel_moves: true            # move independent axes at once (default true)
+//
+// Every error is a FileError naming file:line:column.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/yaml_reader.h"
+#include "rig/geometry.h"
+
+namespace brdfrig::acquire {
+
+struct PlannedPosition {
+  rig::AxisPositions axes;  // radians
+  int line = 0;             // where the position is written in the plan (1-based)
+};
+
+// Auto-bracketing: a metering shot at each position decides the bracket so that the highlight
+// is below `highlight_max` (fraction of full scale) in the shortest exposure and the paper
+// reaches `paper_level` in the longest.
+struct AutoBracket {
+  int count = 3;
+  double metering_s = 0.008;
+  double highlight_max = 0.8;
+  double paper_level = 0.4;
+};
+
+struct Plan {
+  std::string file;  // name used in messages (a path, or "submitted plan 'x'")
+  std::string text;  // the plan exactly as written, stored in the session
+  std::string sample;
+  std::string operator_name;
+  std::string notes;
+  std::vector<PlannedPosition> positions;
+  std::vector<double> exposures_s;  // explicit bracket (seconds); empty when auto
+  bool auto_bracket = false;
+  AutoBracket auto_settings;
+  double settle_s = 0.2;
+  bool parallel_moves = true;
+  int exposures_line = 0;
+
+  // Shots per position.
+  int BracketSize() const {
+    return auto_bracket ? auto_settings.count : static_cast<int>(exposures_s.size());
+  }
+};
+
+// Throws FileError (file:line:column) for anything malformed or unknown.
+Plan ParsePlan(const YamlNode& root, const std::string& text);
+Plan LoadPlanFile(const std::filesystem::path& path);
+Plan LoadPlanString(const std::string& text, const std::string& source_name);
+
+}  // namespace brdfrig::acquire

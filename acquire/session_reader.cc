@@ -1,0 +1,126 @@
+#include "acquire/session_reader.h"
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "acquire/sqlite_db.h"
+#include "common/yaml_reader.h"
+
+namespace brdfrig::acquire {
+namespace {
+
+namespace fs = std::filesystem;
+
+rig::AxisPositions AxesFromJson(const std::string& text) {
+  rig::AxisPositions axes;
+  const nlohmann::json j = nlohmann::json::parse(text);
+  for (auto it = j.begin(); it != j.end(); ++it) axes[it.key()] = it.value().get<double>();
+  return axes;
+}
+
+}  // namespace
+
+rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
+  const fs::path rig_dir = session_dir / "rig";
+  const fs::path rig_file = rig_dir / "rig.yaml";
+  rig::RigDescription description;
+  description.file = rig_file;
+  description.source_files.push_back(rig_file);
+  const YamlNode root = LoadYamlFile(rig_file.string());
+  const YamlNode geometry = root.Required("geometry");
+  if (geometry.IsScalar()) {
+    // The snapshot keeps the geometry file next to rig.yaml under its own name.
+    const fs::path geometry_file = rig_dir / fs::path(geometry.AsString()).filename();
+    if (!fs::exists(geometry_file)) {
+      geometry.Fail("the session's rig snapshot lacks the geometry file " + geometry_file.string());
+    }
+    description.geometry =
+        rig::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
+    description.source_files.push_back(geometry_file);
+  } else {
+    description.geometry = rig::ParseRigGeometry(geometry);
+  }
+  return description;
+}
+
+bool SessionContents::Complete() const {
+  std::map<int, int> shots;
+  for (const RecordedFrame& f : frames)
+    shots[f.position_index] = std::max(shots[f.position_index], f.bracket_index + 1);
+  for (std::size_t p = 0; p < planned_positions.size(); ++p) {
+    const int want = p < planned_brackets.size() ? static_cast<int>(planned_brackets[p].size()) : 0;
+    if (want == 0 || shots[static_cast<int>(p)] != want) return false;
+  }
+  return true;
+}
+
+SessionContents ReadSession(const fs::path& dir) {
+  const fs::path db_file = dir / "session.sqlite";
+  if (!fs::exists(db_file))
+    throw Error("'" + dir.string() + "' is not a session (no session.sqlite)");
+  SqliteDb db(db_file, SqliteDb::Mode::kReadOnly);
+  SessionContents s;
+  s.dir = fs::absolute(dir);
+  bool auto_bracket = false;
+  std::vector<double> explicit_bracket;
+  {
+    Statement q(db,
+                "SELECT name, sample, operator, notes, software_version, positions_json, "
+                "exposures_json FROM session");
+    if (!q.Step()) throw Error("'" + dir.string() + "' has no start record");
+    s.name = q.Text(0);
+    s.sample = q.Text(1);
+    s.operator_name = q.Text(2);
+    s.notes = q.Text(3);
+    s.software_version = q.Text(4);
+    for (const auto& p : nlohmann::json::parse(q.Text(5))) {
+      s.planned_positions.push_back(AxesFromJson(p.dump()));
+    }
+    const nlohmann::json exposures = nlohmann::json::parse(q.Text(6));
+    auto_bracket = exposures.is_string();
+    if (!auto_bracket) explicit_bracket = exposures.get<std::vector<double>>();
+  }
+  {
+    Statement q(db, "SELECT exit_status, reason, stopped_at FROM runs ORDER BY id DESC LIMIT 1");
+    if (q.Step()) {
+      s.exit_status = q.IsNull(2) ? "interrupted" : q.Text(0);
+      s.stop_reason = q.Text(1);
+    }
+  }
+  std::set<int> complete;
+  {
+    Statement q(db, "SELECT position_index FROM positions");
+    while (q.Step()) complete.insert(static_cast<int>(q.Int(0)));
+  }
+  s.planned_brackets.assign(s.planned_positions.size(),
+                            auto_bracket ? std::vector<double>() : explicit_bracket);
+  {
+    Statement q(db,
+                "SELECT position_index, bracket_index, axis_readings_json, requested_exposure_s, "
+                "exposure_s, file, sha256, saturated_fraction, file_index FROM frames "
+                "ORDER BY position_index, bracket_index, file_index");
+    while (q.Step()) {
+      RecordedFrame f;
+      f.position_index = static_cast<int>(q.Int(0));
+      f.bracket_index = static_cast<int>(q.Int(1));
+      f.axis_readings = AxesFromJson(q.Text(2));
+      f.requested_exposure_s = q.Double(3);
+      f.exposure_s = q.Double(4);
+      f.file = s.dir / q.Text(5);
+      f.sha256 = q.Text(6);
+      f.saturated_fraction = q.Double(7);
+      // Auto-bracketing decides a bracket when its position is captured; only a complete
+      // position's bracket is known for sure.
+      if (auto_bracket && q.Int(8) == 0 && complete.count(f.position_index) &&
+          f.position_index < static_cast<int>(s.planned_brackets.size())) {
+        s.planned_brackets[f.position_index].push_back(f.requested_exposure_s);
+      }
+      s.frames.push_back(std::move(f));
+    }
+  }
+  s.rig = ReadRigSnapshot(dir);
+  return s;
+}
+
+}  // namespace brdfrig::acquire

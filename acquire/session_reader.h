@@ -1,0 +1,57 @@
+// Reading a finished (or interrupted) session: the stable interface through which the
+// reconstruction and every other consumer see a capture. It depends only on the session
+// directory: the rig is read from the session's own snapshot, not from the live rig file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rig/geometry.h"
+#include "rig/rig_file.h"
+
+namespace brdfrig::acquire {
+
+// One recorded file. A shot normally gives one file; a camera giving RAW + JPEG gives two
+// RecordedFrames with the same position and bracket index.
+struct RecordedFrame {
+  int position_index = 0;            // index into SessionContents::planned_positions
+  int bracket_index = 0;             // 0 = first shot of the position's bracket
+  rig::AxisPositions axis_readings;  // axis name -> radians, read back from the drives
+  double requested_exposure_s = 0;   // what the plan (or auto-bracketing) asked for
+  double exposure_s = 0;             // what the camera used
+  std::filesystem::path file;        // absolute path of the image file
+  std::string sha256;                // lowercase hex of the file's content when recorded
+  double saturated_fraction = 0;     // fraction of pixels at full scale (0 when not decoded)
+};
+
+struct SessionContents {
+  std::filesystem::path dir;
+  std::string name;
+  std::string sample;
+  std::string operator_name;
+  std::string software_version;  // BRDFRIG_VERSION of the software that created the session
+  std::string notes;
+  // "success", "aborted", "failed" (from the last run's stop record), "interrupted" (the last
+  // run never stopped: killed, crashed, power cut) or "" (never started).
+  std::string exit_status;
+  std::string stop_reason;
+  std::vector<rig::AxisPositions> planned_positions;  // radians
+  // Requested exposures (s) per position: the plan's explicit bracket, or for auto-bracketing
+  // the exposures chosen by metering (empty for a position not captured yet).
+  std::vector<std::vector<double>> planned_brackets;
+  rig::RigDescription rig;  // from the snapshot in <dir>/rig/
+  // Recorded frames ordered by position, bracket, file. Only complete positions' frames and
+  // the frames of the position an interrupted run was working on are present.
+  std::vector<RecordedFrame> frames;
+
+  bool Complete() const;  // every planned position has its bracket recorded
+};
+
+// Throws brdfrig::Error when `dir` is not a readable session.
+SessionContents ReadSession(const std::filesystem::path& dir);
+
+// The rig geometry saved in a session's snapshot (the rig file and its geometry file).
+rig::RigDescription ReadRigSnapshot(const std::filesystem::path& session_dir);
+
+}  // namespace brdfrig::acquire

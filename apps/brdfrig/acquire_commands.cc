@@ -1,0 +1,129 @@
+#include "apps/brdfrig/acquire_commands.h"
+
+#include <signal.h>
+
+#include <atomic>
+#include <cstdio>
+#include <ctime>
+#include <memory>
+#include <thread>
+
+#include "acquire/capture.h"
+#include "acquire/plan_check.h"
+#include "acquire/session_verify.h"
+#include "apps/brdfrig/progress_line.h"
+
+namespace brdfrig::apps {
+namespace {
+
+struct CaptureArgs {
+  std::string rig, plan, output;
+  bool resume = false;
+  bool serial = false;
+  int max_attempts = 5;
+};
+
+// Ctrl-C / SIGTERM abort the run cleanly (axes stopped, downloaded frames recorded, stop
+// record written) instead of killing it mid-write; a second Ctrl-C still kills.
+class AbortOnSignal {
+ public:
+  AbortOnSignal() {
+    sigemptyset(&set_);
+    sigaddset(&set_, SIGINT);
+    sigaddset(&set_, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set_, nullptr);  // before any thread exists: all inherit it
+  }
+  ~AbortOnSignal() {
+    done_ = true;
+    if (thread_.joinable()) thread_.join();
+    pthread_sigmask(SIG_UNBLOCK, &set_, nullptr);
+  }
+  void Watch(acquire::RunEngine& engine) {
+    thread_ = std::thread([this, &engine] {
+      const timespec tick{0, 200'000'000};
+      while (!done_) {
+        const int sig = sigtimedwait(&set_, nullptr, &tick);
+        if (sig > 0) {
+          std::fprintf(stderr, "\nbrdfrig: %s received, aborting the run\n",
+                       sig == SIGINT ? "SIGINT" : "SIGTERM");
+          engine.Abort(sig == SIGINT ? "interrupted (Ctrl-C)" : "terminated (SIGTERM)");
+          pthread_sigmask(SIG_UNBLOCK, &set_, nullptr);
+          signal(SIGINT, SIG_DFL);
+          return;
+        }
+      }
+    });
+  }
+
+ private:
+  sigset_t set_;
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
+}  // namespace
+
+void RegisterAcquireCommands(CLI::App& app) {
+  CLI::App* plan = app.add_subcommand("plan", "Capture plans");
+  plan->require_subcommand(1);
+  auto check_args = std::make_shared<std::pair<std::string, std::string>>();
+  CLI::App* check = plan->add_subcommand(
+      "check", "Dry run of a plan against a rig: limits, duration, highlight visibility");
+  check->add_option("--rig", check_args->first, "rig.yaml")->required();
+  check->add_option("--plan", check_args->second, "plan.yaml")->required();
+  check->callback([check_args] {
+    const acquire::Plan p = acquire::LoadPlanFile(check_args->second);
+    const acquire::PlanCheckReport report =
+        acquire::CheckPlan(p, rig::ReadRigDescription(check_args->first));
+    std::printf("%s", report.ToString().c_str());
+    if (!report.ok()) throw Error("the plan cannot run on this rig (errors above)");
+  });
+
+  auto args = std::make_shared<CaptureArgs>();
+  CLI::App* capture =
+      app.add_subcommand("capture", "Run a capture session in the foreground (no daemon)");
+  capture->add_option("--rig", args->rig, "rig.yaml")->required();
+  capture->add_option("--plan", args->plan, "plan.yaml (optional with --resume)");
+  capture->add_option("-o,--output", args->output, "Session directory to create")->required();
+  capture->add_flag("--resume", args->resume,
+                    "Continue the session in -o (redo its incomplete position); starts it when "
+                    "it does not exist");
+  capture->add_flag("--serial", args->serial,
+                    "Record each frame before moving on (no overlap; for comparison)");
+  capture->add_option("--max-attempts", args->max_attempts,
+                      "Tries per move or shot on recoverable faults (default 5)");
+  capture->callback([args] {
+    acquire::CaptureOptions options;
+    options.rig_file = args->rig;
+    options.plan_file = args->plan;
+    options.output_dir = args->output;
+    options.resume = args->resume;
+    options.run.overlap = !args->serial;
+    options.run.retry.max_attempts = args->max_attempts;
+    ProgressLine line;
+    options.on_progress = [&line](const acquire::RunProgress& p) { line.Show(p); };
+    AbortOnSignal signals;
+    options.on_engine = [&signals](acquire::RunEngine& engine) { signals.Watch(engine); };
+    const acquire::CaptureSummary summary = acquire::RunCapture(options);
+    line.Finish();
+    std::printf("%s\n", summary.ToString().c_str());
+    if (summary.run.status != acquire::ExitStatus::kSuccess) {
+      throw Error(std::string("capture ") + acquire::ExitStatusName(summary.run.status) +
+                  "; continue it with --resume");
+    }
+  });
+
+  CLI::App* session = app.add_subcommand("session", "Inspect capture sessions");
+  session->require_subcommand(1);
+  auto dir = std::make_shared<std::string>();
+  CLI::App* verify = session->add_subcommand(
+      "verify", "Re-hash every frame; report missing, extra or changed files");
+  verify->add_option("dir", *dir, "Session directory")->required();
+  verify->callback([dir] {
+    const acquire::VerifyReport report = acquire::VerifySession(*dir);
+    std::printf("%s", report.ToString().c_str());
+    if (!report.ok()) throw Error("session " + *dir + " does not match its catalog");
+  });
+}
+
+}  // namespace brdfrig::apps
