@@ -111,6 +111,12 @@ std::string Gphoto2Camera::Where() const {
 
 template <typename Call>
 int Gphoto2Camera::Run(const std::string& what, Call call) {
+  if (camera_ == nullptr) {
+    throw CameraError(CameraError::Kind::kGone, 0,
+                      what +
+                          ": the camera is not open (a re-open failed); call Reopen() when it "
+                          "is back");
+  }
   auto backoff = options_.busy_backoff;
   for (int attempt = 1;; ++attempt) {
     deadline_ = std::chrono::steady_clock::now() + options_.operation_timeout;

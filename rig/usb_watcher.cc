@@ -126,15 +126,21 @@ void UsbWatcher::Report(const std::vector<UsbEvent>& events) {
 }
 
 void UsbWatcher::OnHotplug(const UsbDevice& device, bool arrived) {
-  if (options_.cameras_only && !device.still_image) return;
   std::lock_guard lock(mutex_);
-  const auto it = std::find(devices_.begin(), devices_.end(), device);
-  if (arrived && it == devices_.end()) {
+  // A device that has left can no longer be asked for its interfaces, so "left" is matched by
+  // bus and address against what we reported as arrived, and that record is what we send.
+  const auto it = std::find_if(devices_.begin(), devices_.end(), [&](const UsbDevice& d) {
+    return d.bus == device.bus && d.address == device.address;
+  });
+  if (arrived) {
+    if (options_.cameras_only && !device.still_image) return;
+    if (it != devices_.end()) return;
     devices_.push_back(device);
     queue_->Push({UsbEvent::Kind::kArrived, device});
-  } else if (!arrived && it != devices_.end()) {
+  } else if (it != devices_.end()) {
+    const UsbDevice gone = *it;
     devices_.erase(it);
-    queue_->Push({UsbEvent::Kind::kLeft, device});
+    queue_->Push({UsbEvent::Kind::kLeft, gone});
   }
 }
 
