@@ -308,6 +308,13 @@ std::string SessionStore::PlanSource() {
   return s.Text(0);
 }
 
+bool SessionStore::HasRuns() {
+  std::lock_guard lock(mutex_);
+  Statement s(*db_, "SELECT COUNT(*) FROM runs");
+  s.Step();
+  return s.Int(0) > 0;
+}
+
 void SessionStore::BeginRun(bool resumed) {
   std::lock_guard lock(mutex_);
   Statement(*db_, "INSERT INTO runs(started_at, resumed) VALUES (?1, ?2)")

@@ -69,6 +69,8 @@ class SessionStore {
   std::string PlanText();
   std::string PlanSource();
 
+  // Whether a run was ever started (a session created but never run has none).
+  bool HasRuns();
   // Starts a run (the first, or a resumption) in the run log.
   void BeginRun(bool resumed);
   // Discards what an interrupted run left of incomplete positions: their rows, their files
