@@ -1,12 +1,12 @@
 #include "rig/gphoto2_camera.h"
 
-#include <fcntl.h>
 #include <gphoto2/gphoto2.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <thread>
 
 #include "rig/gphoto2_errors.h"
@@ -324,8 +324,22 @@ std::pair<std::string, std::string> Gphoto2Camera::SetConfig(const std::vector<s
             Where() + ": " + name + " '" + value + "' is not offered (choices: " + offered + ")");
       }
     }
-    Run("setting " + name + " to '" + used + "'",
-        [&] { return gp_widget_set_value(widget, used.c_str()); });
+    int set = GP_ERROR_BAD_PARAMETERS;
+    if (type == GP_WIDGET_RADIO || type == GP_WIDGET_MENU || type == GP_WIDGET_TEXT) {
+      set = gp_widget_set_value(widget, used.c_str());
+    } else if (type == GP_WIDGET_RANGE) {
+      // A range widget takes a float (some bodies expose ISO or exposure compensation so).
+      char* end = nullptr;
+      const float number = std::strtof(used.c_str(), &end);
+      if (end != used.c_str()) set = gp_widget_set_value(widget, &number);
+    } else if (type == GP_WIDGET_TOGGLE) {
+      const int on = Lower(used) == "1" || Lower(used) == "on" || Lower(used) == "true";
+      set = gp_widget_set_value(widget, &on);
+    }
+    if (set < GP_OK) {
+      throw CameraError(CameraError::Kind::kBadSettings, set,
+                        Where() + ": cannot set " + name + " to '" + value + "'");
+    }
     Run("setting " + name + " to '" + used + "'",
         [&] { return gp_camera_set_config(camera_, config.root, context_); });
     return {name, used};
@@ -397,7 +411,9 @@ Frame Gphoto2Camera::Download(const CameraFileRef& file) {
 }
 
 std::size_t Gphoto2Camera::DownloadToFd(const CameraFileRef& file, int fd) {
-  // libgphoto2 takes ownership of the descriptor it is given; give it a duplicate.
+  // libgphoto2 owns the descriptor it is given and closes it in gp_file_free (checked with
+  // 2.5.30): give it a duplicate so the caller's stays open.
+  const off_t begin = lseek(fd, 0, SEEK_CUR);  // a dup shares the file offset
   const int copy = dup(fd);
   if (copy == -1) throw CameraError(CameraError::Kind::kIo, 0, "dup() of the output file failed");
   FilePtr camera_file;
@@ -409,11 +425,10 @@ std::size_t Gphoto2Camera::DownloadToFd(const CameraFileRef& file, int fd) {
     return gp_camera_file_get(camera_, file.folder.c_str(), file.name.c_str(), GP_FILE_TYPE_NORMAL,
                               camera_file.file, context_);
   });
-  gp_file_free(camera_file.file);
+  gp_file_free(camera_file.file);  // flushes and closes `copy`
   camera_file.file = nullptr;
-  if (fcntl(copy, F_GETFD) != -1) close(copy);  // versions differ in whether they close it
   const off_t end = lseek(fd, 0, SEEK_CUR);
-  return end > 0 ? static_cast<std::size_t>(end) : 0;
+  return end > begin && begin >= 0 ? static_cast<std::size_t>(end - begin) : 0;
 }
 
 void Gphoto2Camera::Delete(const CameraFileRef& file) {

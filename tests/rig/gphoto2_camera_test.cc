@@ -78,7 +78,8 @@ TEST_F(Gphoto2CameraTest, ListsFilesRecursivelyAndDownloadsOneToMemoryAndToAnFd)
   const std::filesystem::path out = dir_.string() + "_out.jpg";
   const int fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   ASSERT_NE(fd, -1);
-  camera.DownloadToFd(*find("IMG_0001.JPG"), fd);
+  EXPECT_EQ(camera.DownloadToFd(*find("IMG_0001.JPG"), fd), content_.size());
+  EXPECT_NE(fcntl(fd, F_GETFD), -1);  // the caller's descriptor stays open
   close(fd);
   EXPECT_EQ(std::filesystem::file_size(out), content_.size());
   std::filesystem::remove(out);
