@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <thread>
 
@@ -51,6 +52,12 @@ struct WidgetPtr {
     if (root != nullptr) gp_widget_free(root);
   }
 };
+
+std::string Seconds(std::chrono::milliseconds duration) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", duration.count() / 1000.0);
+  return text;
+}
 
 std::string DiskPath(const std::string& port) {
   return port.rfind("disk:", 0) == 0 ? port.substr(5) : std::string();
@@ -132,7 +139,7 @@ int Gphoto2Camera::Run(const std::string& what, Call call) {
     if (timed_out || result == GP_ERROR_CANCEL) {
       throw CameraError(CameraError::Kind::kTimeout, result,
                         what + " on " + Where() + " took longer than " +
-                            std::to_string(options_.operation_timeout.count() / 1000.0) +
+                            Seconds(options_.operation_timeout) +
                             " s and was cancelled: check the cable and the camera's power "
                             "saving, then re-open");
     }

@@ -86,6 +86,11 @@ class Gphoto2Camera : public Camera {
   // Offered choices of the first widget of `names` (empty when none or not a choice widget).
   std::vector<std::string> Choices(const std::vector<std::string>& names);
 
+  // The watchdog for each following operation (default: Gphoto2Options::operation_timeout).
+  void set_operation_timeout(std::chrono::milliseconds timeout) {
+    options_.operation_timeout = timeout;
+  }
+
   // Called by the libgphoto2 context while an operation runs (see the .cc).
   bool ShouldCancel() const;
 

@@ -129,6 +129,21 @@ TEST_F(Gphoto2CameraTest, UnknownModelAndUnknownPortAreNotFound) {
   }
 }
 
+TEST_F(Gphoto2CameraTest, WatchdogCancelsThroughTheContextAsATimeoutAndTheCameraStaysUsable) {
+  Gphoto2Camera camera(DirectoryCamera());
+  camera.set_operation_timeout(std::chrono::milliseconds(0));  // already expired
+  try {
+    camera.ListFiles("/");
+    FAIL() << "listing was not cancelled";
+  } catch (const CameraError& e) {
+    EXPECT_EQ(e.kind(), CameraError::Kind::kTimeout) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cancelled"), std::string::npos) << e.what();
+    EXPECT_TRUE(e.recoverable());
+  }
+  camera.set_operation_timeout(std::chrono::milliseconds(5000));
+  EXPECT_EQ(camera.ListFiles("/").size(), 2u);
+}
+
 TEST(Gphoto2ErrorsTest, ClaimedUsbNamesGvfsAndBusyIsRecoverable) {
   const CameraError claimed = Gphoto2Error(-53, "opening the camera");
   EXPECT_EQ(claimed.kind(), CameraError::Kind::kClaimed);
