@@ -23,6 +23,12 @@ std::string Format(const char* format, double value) {
   return text;
 }
 
+std::string Hex(int code) {
+  char text[16];
+  std::snprintf(text, sizeof(text), "0x%02X", code);
+  return text;
+}
+
 std::string ExposureLabel(double seconds) {
   if (seconds < 0.5) return "1/" + Format("%.0f", 1 / seconds) + " s";
   return Format("%g", seconds) + " s";
@@ -62,7 +68,7 @@ void CheckAxis(Axis& axis, const std::string& backend, DeviceCheck& check) {
       check.detail = where + ": moving, at " + position;
       break;
     case AxisState::kAlarm:
-      check.detail = where + ": ALARM " + Format("0x%02X", status.alarm_code) + " at " + position +
+      check.detail = where + ": ALARM " + Hex(status.alarm_code) + " at " + position +
                      " (clear the cause, then reset the alarm at the drive)";
       break;
     case AxisState::kDisconnected:

@@ -15,12 +15,15 @@
 #include "rig/gphoto2_errors.h"
 #include "rig/hardware_backends.h"
 
-// libgphoto2 keeps camlib and port-library state (ltdl handles, i18n tables) until process
-// exit; LeakSanitizer reports it in asan builds although it is not ours and not growing.
-// Only those libraries' allocations are suppressed.
+// libgphoto2 keeps state until process exit (libltdl handles of its camlibs, the USB port
+// library's device lists); LeakSanitizer reports it in asan builds although it is neither ours
+// nor growing per call. Only allocations made inside those libraries are suppressed. Their
+// stacks pass through code built without frame pointers, so the suppression can only match
+// with the slow (DWARF) unwinder on malloc.
 extern "C" const char* __lsan_default_suppressions() {
   return "leak:libgphoto2.so\nleak:libgphoto2_port.so\nleak:libltdl.so\n";
 }
+extern "C" const char* __asan_default_options() { return "fast_unwind_on_malloc=0"; }
 
 namespace brdfrig::rig {
 namespace {
