@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/exr_io.h"
 #include "common/parallel.h"
+#include "reconstruct/raw_photo.h"
 
 namespace brdfrig::reconstruct {
 
@@ -174,6 +175,7 @@ void HdrMergeOptions::Validate() const {
 cv::Mat ReadPhoto(const std::string& path) {
   // EXR through OpenEXR itself (OpenCV's reader is disabled by default in Debian's build).
   if (std::filesystem::path(path).extension() == ".exr") return ReadRadianceExr(path);
+  if (IsRawPhoto(path)) return ReadRawPhoto(path);
   cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED | cv::IMREAD_ANYDEPTH);
   if (image.empty())
     throw FileError(path, "cannot read photo (missing, truncated or not an image)");

@@ -41,7 +41,8 @@ HdrImage MergeBracket(const std::vector<cv::Mat>& images, const std::vector<doub
 // normalized so that code 255 maps to about 1.
 cv::Mat RecoverResponse(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s);
 
-// Reads photos (PNG, TIFF, JPEG) keeping their bit depth; throws FileError for unreadable files.
+// Reads photos (PNG, TIFF, JPEG, EXR, camera RAW through LibRaw) keeping their bit depth; throws
+// FileError for unreadable files.
 cv::Mat ReadPhoto(const std::string& path);
 
 }  // namespace brdfrig::reconstruct

@@ -12,16 +12,14 @@ layout(std140, binding = 0) uniform SliceBlock {
 
 float knot(int k) { return uKnots[k >> 2][k & 3]; }
 
-// Stable logistic for three channels at once: exp() only ever sees a non-positive argument.
+// Logistic for three channels at once. Clamping t to ±126 keeps 2^t finite (no inf/NaN for any
+// h), and the clamp changes the result only where the logistic is below 2^-126 of A1 − A2.
 vec3 sliceValue(int k, float theta) {
   vec3 a1 = uSliceParams[4 * k].rgb;
   vec3 a2 = uSliceParams[4 * k + 1].rgb;
   // t is (theta − x0)/h in base-2 units: the buffer holds log2(e)/h, so exp2 needs no scaling.
   vec3 t = (theta - uSliceParams[4 * k + 3].rgb) * uSliceParams[4 * k + 2].rgb;
-  vec3 e = exp2(-abs(t));
-  vec3 r = 1.0 / (1.0 + e);
-  vec3 s = mix(r, e * r, greaterThanEqual(t, vec3(0.0)));
-  return a2 + (a1 - a2) * s;
+  return a2 + (a1 - a2) / (1.0 + exp2(clamp(t, -126.0, 126.0)));
 }
 
 vec3 interiorSlope(float h0, float h1, vec3 d0, vec3 d1) {
