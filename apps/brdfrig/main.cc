@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "apps/brdfrig/acquire_commands.h"
+#include "apps/brdfrig/daemon_commands.h"
 #include "apps/brdfrig/evaluate_commands.h"
 #include "apps/brdfrig/reconstruct_commands.h"
 #include "apps/brdfrig/render_commands.h"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   brdfrig::apps::RegisterEvaluateCommands(app);
   brdfrig::apps::RegisterRigCommands(app);
   brdfrig::apps::RegisterAcquireCommands(app);
+  brdfrig::apps::RegisterDaemonCommands(app);
   brdfrig::sim::RegisterSimBackends();
   brdfrig::rig::RegisterHardwareBackends();
 

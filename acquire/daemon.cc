@@ -1,0 +1,362 @@
+#include "acquire/daemon.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "acquire/local_socket.h"
+#include "acquire/plan_check.h"
+#include "acquire/session_reader.h"
+#include "acquire/session_store.h"
+
+namespace brdfrig::acquire {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kDaemonStopped = "daemon stopped";
+
+HttpResponse Json(int status, const json& body) { return {status, body.dump()}; }
+HttpResponse Fail(int status, const std::string& reason) {
+  return Json(status, json{{"error", reason}});
+}
+
+json ProgressJson(const RunProgress& p) {
+  return json{{"state", RunStateName(p.state)},
+              {"position", p.position},
+              {"positions", p.positions},
+              {"frame", p.frame},
+              {"frames_per_position", p.frames_per_position},
+              {"frames_recorded", p.frames_recorded},
+              {"frames_total", p.frames_total},
+              {"eta_s", p.eta_s},
+              {"last_saturation", p.last_saturation},
+              {"message", p.message}};
+}
+
+// Whether a stopped session should be offered (or automatically given) a resume.
+bool Interrupted(const SessionContents& s) {
+  return s.exit_status == "interrupted" || s.exit_status.empty() ||
+         (s.exit_status == "aborted" && s.stop_reason == kDaemonStopped);
+}
+
+}  // namespace
+
+Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
+  config_.Validate();
+  fs::create_directories(config_.data_dir);
+  rig_ = rig::OpenRig(config_.rig_file);
+  Log("rig " + config_.rig_file.string() + " open; sessions in " + config_.data_dir.string());
+  for (const auto& entry : fs::directory_iterator(config_.data_dir)) {
+    const std::string name = entry.path().filename().string();
+    if (!entry.is_directory() || !IsValidSessionName(name) ||
+        !fs::exists(entry.path() / "session.sqlite")) {
+      continue;
+    }
+    try {
+      const SessionContents s = ReadSession(entry.path());
+      if (!Interrupted(s) || s.Complete()) continue;
+      if (config_.resume_interrupted) {
+        queue_.push_back({name, std::nullopt});
+        Log("session " + name + " was interrupted: queued for resume");
+      } else {
+        Log("session " + name + " was interrupted: resumable (POST /v1/sessions/" + name +
+            "/resume or `brdfrig resume --session " + name + "`)");
+      }
+    } catch (const std::exception& e) {
+      Log("session " + name + " cannot be read: " + e.what());
+    }
+  }
+  // Sockets first: a daemon that cannot listen (another one runs) must fail before it
+  // touches a session.
+  const int unix_fd = ListenUnixSocket(config_.socket);
+  int tcp_fd = -1;
+  if (config_.tcp_port != 0) {
+    try {
+      tcp_fd = ListenLoopbackTcp(config_.tcp_port);
+    } catch (...) {
+      ::close(unix_fd);
+      ::unlink(config_.socket.c_str());
+      throw;
+    }
+    tcp_port_ = BoundPort(tcp_fd);
+  }
+  auto handler = [this](const HttpRequest& r) { return Handle(r); };
+  unix_server_ = std::make_unique<HttpServer>(unix_fd, handler);
+  Log("listening on " + config_.socket.string() + " (mode 0600)");
+  if (tcp_fd >= 0) {
+    tcp_server_ = std::make_unique<HttpServer>(tcp_fd, handler, config_.token);
+    Log("listening on 127.0.0.1:" + std::to_string(tcp_port_) + " (bearer token)");
+  }
+  runner_ = std::thread([this] { RunnerLoop(); });
+}
+
+Daemon::~Daemon() {
+  unix_server_.reset();
+  tcp_server_.reset();
+  ::unlink(config_.socket.c_str());
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    if (engine_) engine_->Abort(kDaemonStopped);
+    changed_.notify_all();
+  }
+  runner_.join();
+  Log("stopped");
+}
+
+void Daemon::Log(const std::string& line) {
+  std::lock_guard lock(log_mutex_);
+  std::fprintf(stderr, "brdfrig-daemon: %s\n", line.c_str());
+  std::fflush(stderr);
+}
+
+void Daemon::WaitIdle() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return queue_.empty() && running_.empty(); });
+}
+
+void Daemon::RunnerLoop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+    if (stopping_) return;
+    Job job = std::move(queue_.front());
+    queue_.pop_front();
+    running_ = job.name;
+    progress_.reset();
+    lock.unlock();
+    RunJob(job);
+    lock.lock();
+    running_.clear();
+    engine_ = nullptr;
+    changed_.notify_all();
+  }
+}
+
+void Daemon::RunJob(const Job& job) {
+  const fs::path dir = config_.data_dir / job.name;
+  std::string result;
+  try {
+    std::unique_ptr<SessionStore> store =
+        job.plan ? SessionStore::Create(dir, *job.plan, rig_.description) : SessionStore::Open(dir);
+    const Plan plan = job.plan ? *job.plan : LoadPlanString(store->PlanText(), store->PlanSource());
+    Log("session " + job.name + (job.plan ? ": started" : ": resumed"));
+    RunState last_state = RunState::kIdle;
+    RunEngine engine(rig_, *store, plan, config_.run, [&](const RunProgress& p) {
+      if (p.state != last_state) {
+        last_state = p.state;
+        Log("session " + job.name + ": " + RunStateName(p.state) + " (position " +
+            std::to_string(p.position + 1) + "/" + std::to_string(p.positions) + ")" +
+            (p.message.empty() ? "" : ": " + p.message));
+      }
+      std::lock_guard lock(mutex_);
+      progress_ = p;
+    });
+    {
+      std::lock_guard lock(mutex_);
+      engine_ = &engine;
+      if (stopping_) engine.Abort(kDaemonStopped);
+    }
+    const RunSummary summary = engine.Run(!job.plan.has_value());
+    {
+      std::lock_guard lock(mutex_);
+      engine_ = nullptr;
+      progress_ = engine.Progress();
+    }
+    result = "session " + job.name + ": " + summary.ToString();
+  } catch (const std::exception& e) {
+    std::lock_guard lock(mutex_);
+    engine_ = nullptr;
+    result = "session " + job.name + " could not run: " + e.what();
+  }
+  Log(result);
+  std::lock_guard lock(mutex_);
+  last_result_ = result;
+}
+
+bool Daemon::KnownLocked(const std::string& name) const {
+  if (running_ == name) return true;
+  for (const Job& j : queue_) {
+    if (j.name == name) return true;
+  }
+  return false;
+}
+
+HttpResponse Daemon::Handle(const HttpRequest& request) {
+  const std::string& path = request.path;
+  const bool get = request.method == "GET", post = request.method == "POST";
+  if (path == "/v1/status") return get ? Status() : Fail(405, "use GET");
+  if (path == "/v1/sessions") {
+    if (get) return ListSessions();
+    if (post) return Submit(request.body);
+    return Fail(405, "use GET or POST");
+  }
+  if (path == "/v1/pause" || path == "/v1/resume" || path == "/v1/abort") {
+    return post ? Control(path.substr(4), request.body) : Fail(405, "use POST");
+  }
+  const std::string prefix = "/v1/sessions/", suffix = "/resume";
+  if (path.starts_with(prefix) && path.ends_with(suffix) &&
+      path.size() > prefix.size() + suffix.size()) {
+    if (!post) return Fail(405, "use POST");
+    return ResumeSession(path.substr(prefix.size(), path.size() - prefix.size() - suffix.size()));
+  }
+  return Fail(404, "no such endpoint: " + request.method + " " + path);
+}
+
+HttpResponse Daemon::Status() {
+  std::lock_guard lock(mutex_);
+  json queue = json::array();
+  for (const Job& j : queue_) queue.push_back(j.name);
+  json body{{"state", running_.empty() ? "idle" : "running"},
+            {"session", running_.empty() ? json() : json(running_)},
+            {"queue", queue},
+            {"last_result", last_result_}};
+  if (progress_) body["progress"] = ProgressJson(*progress_);
+  return Json(200, body);
+}
+
+HttpResponse Daemon::ListSessions() {
+  std::vector<std::string> queued;
+  std::string running;
+  {
+    std::lock_guard lock(mutex_);
+    for (const Job& j : queue_) queued.push_back(j.name);
+    running = running_;
+  }
+  json sessions = json::array();
+  std::vector<fs::path> dirs;
+  for (const auto& entry : fs::directory_iterator(config_.data_dir)) {
+    if (entry.is_directory() && IsValidSessionName(entry.path().filename().string()) &&
+        fs::exists(entry.path() / "session.sqlite")) {
+      dirs.push_back(entry.path());
+    }
+  }
+  std::sort(dirs.begin(), dirs.end());
+  for (const fs::path& dir : dirs) {
+    const std::string name = dir.filename().string();
+    try {
+      const SessionContents s = ReadSession(dir);
+      const bool busy =
+          name == running || std::find(queued.begin(), queued.end(), name) != queued.end();
+      sessions.push_back(json{{"name", name},
+                              {"sample", s.sample},
+                              {"operator", s.operator_name},
+                              {"exit_status", name == running ? "running" : s.exit_status},
+                              {"reason", s.stop_reason},
+                              {"frames", s.frames.size()},
+                              {"complete", s.Complete()},
+                              {"resumable", !busy && !s.Complete()}});
+    } catch (const std::exception& e) {
+      sessions.push_back(json{{"name", name}, {"error", e.what()}});
+    }
+  }
+  return Json(200, json{{"sessions", sessions},
+                        {"queue", queued},
+                        {"running", running.empty() ? json() : json(running)}});
+}
+
+HttpResponse Daemon::Submit(const std::string& body) {
+  json request;
+  try {
+    request = json::parse(body);
+  } catch (const json::exception& e) {
+    return Fail(400, std::string("the body is not JSON: ") + e.what());
+  }
+  if (!request.is_object() || !request.contains("name") || !request["name"].is_string() ||
+      !request.contains("plan") || !request["plan"].is_string()) {
+    return Fail(400, "expected {\"name\": \"session name\", \"plan\": \"plan.yaml text\"}");
+  }
+  for (const auto& item : request.items()) {
+    if (item.key() != "name" && item.key() != "plan") {
+      return Fail(400, "unknown field '" + item.key() + "'");
+    }
+  }
+  const std::string name = request["name"];
+  if (!IsValidSessionName(name)) {
+    return Fail(400,
+                "invalid session name: use 1-100 letters, digits, '.', '_' or '-', "
+                "starting with a letter or digit");
+  }
+  Plan plan;
+  try {
+    plan = LoadPlanString(request["plan"].get<std::string>(), "plan of " + name);
+    const PlanCheckReport check = CheckPlan(plan, rig_.description);
+    if (!check.ok()) {
+      std::string reason = "the plan cannot run on this rig:";
+      for (const std::string& e : check.errors) reason += " " + e + ";";
+      return Fail(400, reason);
+    }
+  } catch (const Error& e) {
+    return Fail(400, e.what());
+  }
+  std::lock_guard lock(mutex_);
+  if (KnownLocked(name) || fs::exists(config_.data_dir / name)) {
+    return Fail(409, "a session named '" + name + "' already exists");
+  }
+  queue_.push_back({name, std::move(plan)});
+  const int place = static_cast<int>(queue_.size()) + (running_.empty() ? 0 : 1);
+  changed_.notify_all();
+  Log("session " + name + " submitted (place " + std::to_string(place) + ")");
+  return Json(201, json{{"name", name}, {"place", place}});
+}
+
+HttpResponse Daemon::ResumeSession(const std::string& name) {
+  if (!IsValidSessionName(name)) return Fail(400, "invalid session name");
+  const fs::path dir = config_.data_dir / name;
+  if (!fs::exists(dir / "session.sqlite")) return Fail(404, "no session named '" + name + "'");
+  try {
+    if (ReadSession(dir).Complete()) return Fail(409, "session '" + name + "' is complete");
+  } catch (const std::exception& e) {
+    return Fail(409, std::string("session cannot be read: ") + e.what());
+  }
+  std::lock_guard lock(mutex_);
+  if (KnownLocked(name)) return Fail(409, "session '" + name + "' is already queued or running");
+  queue_.push_back({name, std::nullopt});
+  changed_.notify_all();
+  Log("session " + name + " queued for resume");
+  return Json(202, json{{"name", name}, {"place", queue_.size() + (running_.empty() ? 0 : 1)}});
+}
+
+HttpResponse Daemon::Control(const std::string& action, const std::string& body) {
+  std::string reason = "aborted by the operator";
+  if (action == "abort" && !body.empty()) {
+    try {
+      const json request = json::parse(body);
+      if (!request.is_object()) return Fail(400, "expected a JSON object");
+      if (request.contains("reason")) {
+        if (!request["reason"].is_string()) return Fail(400, "reason must be a string");
+        reason = request["reason"];
+      }
+    } catch (const json::exception& e) {
+      return Fail(400, std::string("the body is not JSON: ") + e.what());
+    }
+  }
+  std::lock_guard lock(mutex_);
+  if (!engine_) return Fail(409, "no session is running");
+  if (action == "pause") engine_->Pause();
+  if (action == "resume") engine_->Resume();
+  if (action == "abort") engine_->Abort(reason);
+  Log("session " + running_ + ": " + action + " requested");
+  return Json(200, json{{"session", running_}, {"requested", action}});
+}
+
+void ServeUntilSignal(const DaemonConfig& config) {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  // Blocked before any thread starts, so that only sigwait below sees them.
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  signal(SIGPIPE, SIG_IGN);  // a client gone mid-response must not kill the daemon
+  Daemon daemon(config);
+  int sig = 0;
+  sigwait(&set, &sig);
+  std::fprintf(stderr, "brdfrig-daemon: %s received, shutting down\n",
+               sig == SIGINT ? "SIGINT" : "SIGTERM");
+}
+
+}  // namespace brdfrig::acquire

@@ -1,0 +1,87 @@
+// The acquisition daemon (`brdfrig daemon`): owns the rig, keeps a queue of submitted plans,
+// runs them one at a time with the run engine, and answers a JSON control API (HTTP over a
+// Unix domain socket with mode 0600, optionally loopback TCP with a bearer token). Sessions
+// are created only as <data_dir>/<validated name>: nothing a client sends names a path.
+//
+//   GET  /v1/status                     state, running session, progress, queue, last result
+//   GET  /v1/sessions                   every session in data_dir, the queue, resumable ones
+//   POST /v1/sessions                   {"name": "...", "plan": "<plan.yaml text>"} → 201
+//   POST /v1/sessions/NAME/resume       queue an interrupted/failed/aborted session → 202
+//   POST /v1/pause | /v1/resume         the running session (409 when none)
+//   POST /v1/abort                      {"reason": "..."} optional (409 when none)
+// Errors: {"error": "why"} with 400 (malformed request, bad plan with file:line), 401 (token),
+// 404, 405, 409 (name taken, nothing running, ...), 413 (body over 1 MiB).
+//
+// On start it lists sessions a crash interrupted and, when configured, queues their resume.
+// Logs go to stderr, one line per event (journald adds the time).
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "acquire/daemon_config.h"
+#include "acquire/http_server.h"
+#include "acquire/plan.h"
+#include "acquire/run_engine.h"
+#include "rig/rig_file.h"
+
+namespace brdfrig::acquire {
+
+class Daemon {
+ public:
+  // Opens the rig, scans data_dir, starts listening and the runner. Throws brdfrig::Error.
+  explicit Daemon(DaemonConfig config);
+  // Aborts a running session ("daemon stopped"; resumable), stops listening, removes the socket.
+  ~Daemon();
+  Daemon(const Daemon&) = delete;
+  Daemon& operator=(const Daemon&) = delete;
+
+  int tcp_port() const { return tcp_port_; }
+  const DaemonConfig& config() const { return config_; }
+  // Blocks until the queue is empty and nothing runs (for tests and `--exit-when-idle`).
+  void WaitIdle();
+
+  HttpResponse Handle(const HttpRequest& request);
+
+ private:
+  struct Job {
+    std::string name;
+    std::optional<Plan> plan;  // empty for a resume
+  };
+
+  HttpResponse Status();
+  HttpResponse ListSessions();
+  HttpResponse Submit(const std::string& body);
+  HttpResponse ResumeSession(const std::string& name);
+  HttpResponse Control(const std::string& action, const std::string& body);
+  bool KnownLocked(const std::string& name) const;
+  void RunnerLoop();
+  void RunJob(const Job& job);
+  void Log(const std::string& line);
+
+  DaemonConfig config_;
+  rig::Rig rig_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Job> queue_;
+  std::string running_;          // name of the running session ("" when idle)
+  RunEngine* engine_ = nullptr;  // the running session's engine, under mutex_
+  std::optional<RunProgress> progress_;
+  std::string last_result_;  // one line about the last finished run
+  bool stopping_ = false;
+  std::mutex log_mutex_;
+  std::thread runner_;
+  std::unique_ptr<HttpServer> unix_server_;
+  std::unique_ptr<HttpServer> tcp_server_;
+  int tcp_port_ = 0;
+};
+
+// `brdfrig daemon`: runs until SIGINT or SIGTERM.
+void ServeUntilSignal(const DaemonConfig& config);
+
+}  // namespace brdfrig::acquire

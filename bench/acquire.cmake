@@ -1,0 +1,2 @@
+brdfrig_add_bench(acquire_session SOURCES acquire_session_bench.cc
+                  DEPS brdfrig::acquire brdfrig::sim)
