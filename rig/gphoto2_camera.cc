@@ -284,6 +284,19 @@ std::vector<std::string> Gphoto2Camera::Choices(const std::vector<std::string>& 
   return {};
 }
 
+std::vector<std::pair<std::string, std::string>> Gphoto2Camera::CurrentSettings() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto* names : {&kShutterSpeed, &kIso, &kAperture, &kImageFormat, &kCaptureTarget}) {
+    for (const std::string& name : *names) {
+      if (const auto value = GetConfig({name})) {
+        out.emplace_back(name, *value);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 std::optional<std::string> Gphoto2Camera::GetConfig(const std::vector<std::string>& names) {
   WidgetPtr config;
   if (gp_camera_get_config(camera_, &config.root, context_) < GP_OK) return std::nullopt;

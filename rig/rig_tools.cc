@@ -7,6 +7,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "rig/backend_registry.h"
+#include "rig/gphoto2_camera.h"
 #include "rig/modbus_axis.h"
 #include "rig/modbus_light.h"
 #include "rig/rig_file.h"
@@ -38,7 +39,7 @@ DeviceContext Context(const std::filesystem::path& rig_file, const std::string& 
   return {name, rig_file.parent_path().string()};
 }
 
-std::string CameraDetail(const Camera& camera, const std::string& backend) {
+std::string CameraDetail(Camera& camera, const std::string& backend) {
   const CameraInfo info = camera.Info();
   std::string detail = backend + " " + info.model + " at " + info.port;
   if (!info.serial.empty()) detail += ", serial " + info.serial;
@@ -49,6 +50,13 @@ std::string CameraDetail(const Camera& camera, const std::string& backend) {
     detail += ", " + std::to_string(info.shutter_speeds.size()) + " shutter speeds (" +
               ExposureLabel(info.shutter_speeds.front()) + " .. " +
               ExposureLabel(info.shutter_speeds.back()) + ")";
+  }
+  if (auto* gphoto2 = dynamic_cast<Gphoto2Camera*>(&camera)) {
+    std::string settings;
+    for (const auto& [name, value] : gphoto2->CurrentSettings()) {
+      settings += (settings.empty() ? "" : ", ") + name + " " + value;
+    }
+    if (!settings.empty()) detail += "; now: " + settings;
   }
   return detail;
 }
@@ -62,6 +70,7 @@ void CheckAxis(Axis& axis, const std::string& backend, DeviceCheck& check) {
     case AxisState::kReady:
       check.ok = true;
       check.detail = where + ": ready at " + position;
+      if (modbus) check.detail += " (" + modbus->Settings() + ")";
       break;
     case AxisState::kMoving:
       check.ok = true;
