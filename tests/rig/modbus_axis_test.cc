@@ -90,7 +90,7 @@ TEST_P(ModbusAxisTest, MoveReachesTargetAndReadsPositionBack) {
   const AxisStatus status = axis_->Status();
   EXPECT_EQ(status.state, AxisState::kReady);
   EXPECT_NEAR(status.position, 10 * kRadPerDeg, 1e-6);
-  EXPECT_EQ(server_->counters().moves, 1);
+  EXPECT_GE(server_->counters().moves, 1);  // 2 if a slow answer made the client retry
 }
 
 TEST_P(ModbusAxisTest, NegativeMoveThenHomeEndsAtZero) {
