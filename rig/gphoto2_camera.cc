@@ -1,12 +1,13 @@
 #include "rig/gphoto2_camera.h"
 
-#include <fcntl.h>
 #include <gphoto2/gphoto2.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <thread>
 
 #include "rig/gphoto2_errors.h"
@@ -51,6 +52,12 @@ struct WidgetPtr {
     if (root != nullptr) gp_widget_free(root);
   }
 };
+
+std::string Seconds(std::chrono::milliseconds duration) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", duration.count() / 1000.0);
+  return text;
+}
 
 std::string DiskPath(const std::string& port) {
   return port.rfind("disk:", 0) == 0 ? port.substr(5) : std::string();
@@ -132,7 +139,7 @@ int Gphoto2Camera::Run(const std::string& what, Call call) {
     if (timed_out || result == GP_ERROR_CANCEL) {
       throw CameraError(CameraError::Kind::kTimeout, result,
                         what + " on " + Where() + " took longer than " +
-                            std::to_string(options_.operation_timeout.count() / 1000.0) +
+                            Seconds(options_.operation_timeout) +
                             " s and was cancelled: check the cable and the camera's power "
                             "saving, then re-open");
     }
@@ -277,6 +284,19 @@ std::vector<std::string> Gphoto2Camera::Choices(const std::vector<std::string>& 
   return {};
 }
 
+std::vector<std::pair<std::string, std::string>> Gphoto2Camera::CurrentSettings() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto* names : {&kShutterSpeed, &kIso, &kAperture, &kImageFormat, &kCaptureTarget}) {
+    for (const std::string& name : *names) {
+      if (const auto value = GetConfig({name})) {
+        out.emplace_back(name, *value);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 std::optional<std::string> Gphoto2Camera::GetConfig(const std::vector<std::string>& names) {
   WidgetPtr config;
   if (gp_camera_get_config(camera_, &config.root, context_) < GP_OK) return std::nullopt;
@@ -324,8 +344,22 @@ std::pair<std::string, std::string> Gphoto2Camera::SetConfig(const std::vector<s
             Where() + ": " + name + " '" + value + "' is not offered (choices: " + offered + ")");
       }
     }
-    Run("setting " + name + " to '" + used + "'",
-        [&] { return gp_widget_set_value(widget, used.c_str()); });
+    int set = GP_ERROR_BAD_PARAMETERS;
+    if (type == GP_WIDGET_RADIO || type == GP_WIDGET_MENU || type == GP_WIDGET_TEXT) {
+      set = gp_widget_set_value(widget, used.c_str());
+    } else if (type == GP_WIDGET_RANGE) {
+      // A range widget takes a float (some bodies expose ISO or exposure compensation so).
+      char* end = nullptr;
+      const float number = std::strtof(used.c_str(), &end);
+      if (end != used.c_str()) set = gp_widget_set_value(widget, &number);
+    } else if (type == GP_WIDGET_TOGGLE) {
+      const int on = Lower(used) == "1" || Lower(used) == "on" || Lower(used) == "true";
+      set = gp_widget_set_value(widget, &on);
+    }
+    if (set < GP_OK) {
+      throw CameraError(CameraError::Kind::kBadSettings, set,
+                        Where() + ": cannot set " + name + " to '" + value + "'");
+    }
     Run("setting " + name + " to '" + used + "'",
         [&] { return gp_camera_set_config(camera_, config.root, context_); });
     return {name, used};
@@ -397,7 +431,9 @@ Frame Gphoto2Camera::Download(const CameraFileRef& file) {
 }
 
 std::size_t Gphoto2Camera::DownloadToFd(const CameraFileRef& file, int fd) {
-  // libgphoto2 takes ownership of the descriptor it is given; give it a duplicate.
+  // libgphoto2 owns the descriptor it is given and closes it in gp_file_free (checked with
+  // 2.5.30): give it a duplicate so the caller's stays open.
+  const off_t begin = lseek(fd, 0, SEEK_CUR);  // a dup shares the file offset
   const int copy = dup(fd);
   if (copy == -1) throw CameraError(CameraError::Kind::kIo, 0, "dup() of the output file failed");
   FilePtr camera_file;
@@ -409,11 +445,10 @@ std::size_t Gphoto2Camera::DownloadToFd(const CameraFileRef& file, int fd) {
     return gp_camera_file_get(camera_, file.folder.c_str(), file.name.c_str(), GP_FILE_TYPE_NORMAL,
                               camera_file.file, context_);
   });
-  gp_file_free(camera_file.file);
+  gp_file_free(camera_file.file);  // flushes and closes `copy`
   camera_file.file = nullptr;
-  if (fcntl(copy, F_GETFD) != -1) close(copy);  // versions differ in whether they close it
   const off_t end = lseek(fd, 0, SEEK_CUR);
-  return end > 0 ? static_cast<std::size_t>(end) : 0;
+  return end > begin && begin >= 0 ? static_cast<std::size_t>(end - begin) : 0;
 }
 
 void Gphoto2Camera::Delete(const CameraFileRef& file) {

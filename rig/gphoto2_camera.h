@@ -83,8 +83,16 @@ class Gphoto2Camera : public Camera {
                                                 const std::string& value);
   // Current value of the first widget of `names` the camera has.
   std::optional<std::string> GetConfig(const std::vector<std::string>& names);
+  // Current values of the exposure-related widgets the camera has, as (widget, value):
+  // shutterspeed, iso, aperture|f-number, imageformat|imagequality, capturetarget.
+  std::vector<std::pair<std::string, std::string>> CurrentSettings();
   // Offered choices of the first widget of `names` (empty when none or not a choice widget).
   std::vector<std::string> Choices(const std::vector<std::string>& names);
+
+  // The watchdog for each following operation (default: Gphoto2Options::operation_timeout).
+  void set_operation_timeout(std::chrono::milliseconds timeout) {
+    options_.operation_timeout = timeout;
+  }
 
   // Called by the libgphoto2 context while an operation runs (see the .cc).
   bool ShouldCancel() const;

@@ -83,6 +83,12 @@ std::string ModbusAxis::Describe() const {
          ", profile " + profile_.name;
 }
 
+std::string ModbusAxis::Settings() const {
+  return Number(options_.steps_per_degree) + " steps/deg, limits " + Number(options_.min_deg) +
+         ".." + Number(options_.max_deg) + " deg, " + Number(options_.speed_deg_s) + " deg/s, " +
+         Number(options_.acceleration_deg_s2) + " deg/s^2";
+}
+
 double ModbusAxis::ToRadians(int32_t steps) const {
   return steps / options_.steps_per_degree / kDegPerRad;
 }

@@ -53,6 +53,8 @@ class ModbusAxis : public Axis {
 
   // "modbus tcp://host:port slave 1, profile oriental_az_direct" (for `brdfrig rig check`).
   std::string Describe() const;
+  // "100 steps/deg, limits -80..80 deg, 20 deg/s, 100 deg/s^2" (for `brdfrig rig check`).
+  std::string Settings() const;
   DriveReading Read();
 
  private:

@@ -7,6 +7,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "rig/backend_registry.h"
+#include "rig/gphoto2_camera.h"
 #include "rig/modbus_axis.h"
 #include "rig/modbus_light.h"
 #include "rig/rig_file.h"
@@ -23,6 +24,12 @@ std::string Format(const char* format, double value) {
   return text;
 }
 
+std::string Hex(int code) {
+  char text[16];
+  std::snprintf(text, sizeof(text), "0x%02X", code);
+  return text;
+}
+
 std::string ExposureLabel(double seconds) {
   if (seconds < 0.5) return "1/" + Format("%.0f", 1 / seconds) + " s";
   return Format("%g", seconds) + " s";
@@ -32,7 +39,7 @@ DeviceContext Context(const std::filesystem::path& rig_file, const std::string& 
   return {name, rig_file.parent_path().string()};
 }
 
-std::string CameraDetail(const Camera& camera, const std::string& backend) {
+std::string CameraDetail(Camera& camera, const std::string& backend) {
   const CameraInfo info = camera.Info();
   std::string detail = backend + " " + info.model + " at " + info.port;
   if (!info.serial.empty()) detail += ", serial " + info.serial;
@@ -43,6 +50,13 @@ std::string CameraDetail(const Camera& camera, const std::string& backend) {
     detail += ", " + std::to_string(info.shutter_speeds.size()) + " shutter speeds (" +
               ExposureLabel(info.shutter_speeds.front()) + " .. " +
               ExposureLabel(info.shutter_speeds.back()) + ")";
+  }
+  if (auto* gphoto2 = dynamic_cast<Gphoto2Camera*>(&camera)) {
+    std::string settings;
+    for (const auto& [name, value] : gphoto2->CurrentSettings()) {
+      settings += (settings.empty() ? "" : ", ") + name + " " + value;
+    }
+    if (!settings.empty()) detail += "; now: " + settings;
   }
   return detail;
 }
@@ -56,13 +70,14 @@ void CheckAxis(Axis& axis, const std::string& backend, DeviceCheck& check) {
     case AxisState::kReady:
       check.ok = true;
       check.detail = where + ": ready at " + position;
+      if (modbus) check.detail += " (" + modbus->Settings() + ")";
       break;
     case AxisState::kMoving:
       check.ok = true;
       check.detail = where + ": moving, at " + position;
       break;
     case AxisState::kAlarm:
-      check.detail = where + ": ALARM " + Format("0x%02X", status.alarm_code) + " at " + position +
+      check.detail = where + ": ALARM " + Hex(status.alarm_code) + " at " + position +
                      " (clear the cause, then reset the alarm at the drive)";
       break;
     case AxisState::kDisconnected:

@@ -104,9 +104,9 @@ int32_t ModbusDriveServer::position_steps() const {
   return static_cast<int32_t>(std::lround(motion_.position));
 }
 
-bool ModbusDriveServer::moving() const {
+bool ModbusDriveServer::moving() {
   std::lock_guard lock(mutex_);
-  const_cast<ModbusDriveServer*>(this)->Advance();
+  Advance();
   return motion_.moving;
 }
 

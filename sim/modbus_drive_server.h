@@ -69,7 +69,7 @@ class ModbusDriveServer {
   void InjectFaults(const DriveFaults& faults);
   DriveServerCounters counters() const;
   int32_t position_steps() const;
-  bool moving() const;
+  bool moving();  // advances the simulated motion to now first
   bool alarm() const;
   bool coil(int address) const;
 

@@ -11,9 +11,11 @@
 #include "rig/rig_file.h"
 #include "rig/rig_tools.h"
 
+// libgphoto2's state kept until exit: see gphoto2_camera_test.cc.
 extern "C" const char* __lsan_default_suppressions() {
-  return "leak:libgphoto2.so\nleak:libgphoto2_port.so\nleak:libltdl.so\n";  // see camera test
+  return "leak:libgphoto2.so\nleak:libgphoto2_port.so\nleak:libltdl.so\n";
 }
+extern "C" const char* __asan_default_options() { return "fast_unwind_on_malloc=0"; }
 
 namespace brdfrig::rig {
 namespace {

@@ -61,6 +61,7 @@ TEST_F(RigToolsTest, CheckFindsEveryDeviceAndReportsPositions) {
   const std::string text = report.ToString();
   EXPECT_NE(text.find("light_arm"), std::string::npos) << text;
   EXPECT_NE(text.find("profile oriental_az_direct: ready at 0.000 deg"), std::string::npos) << text;
+  EXPECT_NE(text.find("(100 steps/deg, limits -80..80 deg, 200 deg/s"), std::string::npos) << text;
   EXPECT_NE(text.find("3 of 3 devices OK"), std::string::npos) << text;
 }
 
