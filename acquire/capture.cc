@@ -57,8 +57,12 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
     for (const std::string& e : check.errors) message += "\n  " + e;
     throw Error(message);
   }
+  summary.warnings = check.warnings;
   rig::Rig rig = rig::OpenRig(options.rig_file);
   if (!store) store = SessionStore::Create(dir, plan, description);
+  if (!summary.resumed) {
+    for (const std::string& w : check.warnings) store->LogEvent("warning", -1, "plan check: " + w);
+  }
   RunEngine engine(rig, *store, plan, options.run, options.on_progress);
   if (options.on_engine) options.on_engine(engine);
   summary.run = engine.Run(summary.resumed);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "acquire/run_engine.h"
 
@@ -27,6 +28,7 @@ struct CaptureOptions {
 struct CaptureSummary {
   std::filesystem::path session_dir;
   bool resumed = false;
+  std::vector<std::string> warnings;  // the plan check's (e.g. highlight not on the cut-out)
   RunSummary run;
   std::string ToString() const;
 };

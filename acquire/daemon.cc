@@ -289,9 +289,11 @@ HttpResponse Daemon::Submit(const std::string& body) {
                 "starting with a letter or digit");
   }
   Plan plan;
+  json warnings = json::array();
   try {
     plan = LoadPlanString(request["plan"].get<std::string>(), "plan of " + name);
     const PlanCheckReport check = CheckPlan(plan, rig_.description);
+    for (const std::string& w : check.warnings) warnings.push_back(w);
     if (!check.ok()) {
       std::string reason = "the plan cannot run on this rig:";
       for (const std::string& e : check.errors) reason += " " + e + ";";
@@ -313,7 +315,7 @@ HttpResponse Daemon::Submit(const std::string& body) {
   const int place = static_cast<int>(queue_.size()) + (running_.empty() ? 0 : 1);
   changed_.notify_all();
   Log("session " + name + " submitted (place " + std::to_string(place) + ")");
-  return Json(201, json{{"name", name}, {"place", place}});
+  return Json(201, json{{"name", name}, {"place", place}, {"warnings", warnings}});
 }
 
 HttpResponse Daemon::ResumeSession(const std::string& name) {

@@ -158,10 +158,14 @@ void RunEngine::CheckControls() {
   if (abort_reason_) throw Stop{ExitStatus::kAborted, *abort_reason_};
   if (!pause_requested_) return;
   const RunState before = progress_.state;
+  lock.unlock();
+  StopAxes();
+  // Paused means settled: every frame taken so far is recorded before the state says so.
+  writer_->Drain();
+  lock.lock();
   progress_.state = RunState::kPaused;
   progress_.message = "paused by the operator";
   lock.unlock();
-  StopAxes();
   store_.LogEvent("info", progress_.position, "paused");
   Publish();
   const auto paused_at = Clock::now();

@@ -7,6 +7,7 @@
 // States and their rules:
 //   idle ──Run──► moving ──in position──► acquiring ──bracket taken──► moving (next) │ done
 //   moving/acquiring ──Pause (at the next safe point: before a move or a shot)──► paused
+//     (entered once the axes are stopped and every frame taken so far is recorded)
 //   paused ──Resume──► the state it left;  any ──Abort──► done (aborted)
 //   moving/acquiring ──recoverable fault──► fault ──recovered──► moving/acquiring
 //   fault ──retries exhausted / fault not recoverable──► done (failed)

@@ -106,6 +106,7 @@ void RegisterAcquireCommands(CLI::App& app) {
     options.on_engine = [&signals](acquire::RunEngine& engine) { signals.Watch(engine); };
     const acquire::CaptureSummary summary = acquire::RunCapture(options);
     line.Finish();
+    for (const std::string& w : summary.warnings) std::printf("warning: %s\n", w.c_str());
     std::printf("%s\n", summary.ToString().c_str());
     if (summary.run.status != acquire::ExitStatus::kSuccess) {
       throw Error(std::string("capture ") + acquire::ExitStatusName(summary.run.status) +

@@ -113,6 +113,11 @@ void RegisterDaemonCommands(CLI::App& app) {
     acquire::DaemonClient client = Connect(*args);
     const json reply = client.Submit(args->name, ReadFileToString(args->plan));
     std::printf("session %s queued (place %d)\n", args->name.c_str(), reply.value("place", 0));
+    if (reply.contains("warnings")) {
+      for (const json& w : reply["warnings"]) {
+        std::printf("warning: %s\n", w.get<std::string>().c_str());
+      }
+    }
     if (args->follow) Follow(client);
   });
 
