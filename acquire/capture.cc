@@ -8,11 +8,22 @@ namespace brdfrig::acquire {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// "sessions/s1/" names the session s1 too.
+fs::path SessionDir(const fs::path& output) {
+  fs::path dir = output.lexically_normal();
+  if (dir.filename().empty()) dir = dir.parent_path();
+  return dir;
+}
+
+}  // namespace
+
 void CaptureOptions::Validate() const {
   if (rig_file.empty()) throw OptionsError("capture: no rig file given (--rig)");
   if (output_dir.empty()) throw OptionsError("capture: no session directory given (-o)");
   if (plan_file.empty() && !resume) throw OptionsError("capture: no plan given (--plan)");
-  ValidateSessionName(output_dir.filename().string());
+  ValidateSessionName(SessionDir(output_dir).filename().string());
   run.Validate();
 }
 
@@ -23,17 +34,18 @@ std::string CaptureSummary::ToString() const {
 CaptureSummary RunCapture(const CaptureOptions& options) {
   options.Validate();
   CaptureSummary summary;
-  summary.session_dir = options.output_dir;
+  const fs::path dir = SessionDir(options.output_dir);
+  summary.session_dir = dir;
   const rig::RigDescription description = rig::ReadRigDescription(options.rig_file);
   std::unique_ptr<SessionStore> store;
   Plan plan;
-  if (options.resume && fs::exists(options.output_dir)) {
-    store = SessionStore::Open(options.output_dir);
+  if (options.resume && fs::exists(dir)) {
+    store = SessionStore::Open(dir);
     // The session's own plan is the one to finish; a different plan file is a mistake.
     plan = LoadPlanString(store->PlanText(), store->PlanSource());
     if (!options.plan_file.empty() && ReadFileToString(options.plan_file) != plan.text) {
-      throw Error(options.plan_file.string() + " differs from the plan of session " +
-                  options.output_dir.string() + "; resume without --plan or with the same plan");
+      throw Error(options.plan_file.string() + " differs from the plan of session " + dir.string() +
+                  "; resume without --plan or with the same plan");
     }
     summary.resumed = true;
   } else {
@@ -46,7 +58,7 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
     throw Error(message);
   }
   rig::Rig rig = rig::OpenRig(options.rig_file);
-  if (!store) store = SessionStore::Create(options.output_dir, plan, description);
+  if (!store) store = SessionStore::Create(dir, plan, description);
   RunEngine engine(rig, *store, plan, options.run, options.on_progress);
   if (options.on_engine) options.on_engine(engine);
   summary.run = engine.Run(summary.resumed);

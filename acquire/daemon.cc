@@ -50,17 +50,22 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   fs::create_directories(config_.data_dir);
   rig_ = rig::OpenRig(config_.rig_file);
   Log("rig " + config_.rig_file.string() + " open; sessions in " + config_.data_dir.string());
+  // Oldest first (plan.yaml is written when a session is created): the queue keeps its order.
+  std::vector<std::pair<fs::file_time_type, fs::path>> found;
   for (const auto& entry : fs::directory_iterator(config_.data_dir)) {
-    const std::string name = entry.path().filename().string();
-    if (!entry.is_directory() || !IsValidSessionName(name) ||
-        !fs::exists(entry.path() / "session.sqlite")) {
-      continue;
+    if (entry.is_directory() && IsValidSessionName(entry.path().filename().string()) &&
+        fs::exists(entry.path() / "session.sqlite") && fs::exists(entry.path() / "plan.yaml")) {
+      found.emplace_back(fs::last_write_time(entry.path() / "plan.yaml"), entry.path());
     }
+  }
+  std::sort(found.begin(), found.end());
+  for (const auto& [time, path] : found) {
+    const std::string name = path.filename().string();
     try {
-      const SessionContents s = ReadSession(entry.path());
+      const SessionContents s = ReadSession(path);
       if (!Interrupted(s) || s.Complete()) continue;
       if (config_.resume_interrupted) {
-        queue_.push_back({name, std::nullopt});
+        queue_.push_back({name});
         Log("session " + name + " was interrupted: queued for resume");
       } else {
         Log("session " + name + " was interrupted: resumable (POST /v1/sessions/" + name +
@@ -141,10 +146,10 @@ void Daemon::RunJob(const Job& job) {
   const fs::path dir = config_.data_dir / job.name;
   std::string result;
   try {
-    std::unique_ptr<SessionStore> store =
-        job.plan ? SessionStore::Create(dir, *job.plan, rig_.description) : SessionStore::Open(dir);
-    const Plan plan = job.plan ? *job.plan : LoadPlanString(store->PlanText(), store->PlanSource());
-    Log("session " + job.name + (job.plan ? ": started" : ": resumed"));
+    std::unique_ptr<SessionStore> store = SessionStore::Open(dir);
+    const Plan plan = LoadPlanString(store->PlanText(), store->PlanSource());
+    const bool resumed = store->HasRuns();
+    Log("session " + job.name + (resumed ? ": resumed" : ": started"));
     RunState last_state = RunState::kIdle;
     RunEngine engine(rig_, *store, plan, config_.run, [&](const RunProgress& p) {
       if (p.state != last_state) {
@@ -161,7 +166,7 @@ void Daemon::RunJob(const Job& job) {
       engine_ = &engine;
       if (stopping_) engine.Abort(kDaemonStopped);
     }
-    const RunSummary summary = engine.Run(!job.plan.has_value());
+    const RunSummary summary = engine.Run(resumed);
     {
       std::lock_guard lock(mutex_);
       engine_ = nullptr;
@@ -245,7 +250,9 @@ HttpResponse Daemon::ListSessions() {
       sessions.push_back(json{{"name", name},
                               {"sample", s.sample},
                               {"operator", s.operator_name},
-                              {"exit_status", name == running ? "running" : s.exit_status},
+                              {"exit_status", name == running ? "running"
+                                              : busy          ? "queued"
+                                                              : s.exit_status},
                               {"reason", s.stop_reason},
                               {"frames", s.frames.size()},
                               {"complete", s.Complete()},
@@ -297,7 +304,12 @@ HttpResponse Daemon::Submit(const std::string& body) {
   if (KnownLocked(name) || fs::exists(config_.data_dir / name)) {
     return Fail(409, "a session named '" + name + "' already exists");
   }
-  queue_.push_back({name, std::move(plan)});
+  try {
+    SessionStore::Create(config_.data_dir / name, plan, rig_.description);
+  } catch (const Error& e) {
+    return Fail(409, e.what());
+  }
+  queue_.push_back({name});
   const int place = static_cast<int>(queue_.size()) + (running_.empty() ? 0 : 1);
   changed_.notify_all();
   Log("session " + name + " submitted (place " + std::to_string(place) + ")");
@@ -315,7 +327,7 @@ HttpResponse Daemon::ResumeSession(const std::string& name) {
   }
   std::lock_guard lock(mutex_);
   if (KnownLocked(name)) return Fail(409, "session '" + name + "' is already queued or running");
-  queue_.push_back({name, std::nullopt});
+  queue_.push_back({name});
   changed_.notify_all();
   Log("session " + name + " queued for resume");
   return Json(202, json{{"name", name}, {"place", queue_.size() + (running_.empty() ? 0 : 1)}});

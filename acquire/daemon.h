@@ -6,6 +6,7 @@
 //   GET  /v1/status                     state, running session, progress, queue, last result
 //   GET  /v1/sessions                   every session in data_dir, the queue, resumable ones
 //   POST /v1/sessions                   {"name": "...", "plan": "<plan.yaml text>"} → 201
+//                                       (the session directory is created at once)
 //   POST /v1/sessions/NAME/resume       queue an interrupted/failed/aborted session → 202
 //   POST /v1/pause | /v1/resume         the running session (409 when none)
 //   POST /v1/abort                      {"reason": "..."} optional (409 when none)
@@ -49,9 +50,10 @@ class Daemon {
   HttpResponse Handle(const HttpRequest& request);
 
  private:
+  // A queued session. Its directory exists from submission on (the plan is stored there), so
+  // a queue survives a restart: a session never started reads as resumable.
   struct Job {
     std::string name;
-    std::optional<Plan> plan;  // empty for a resume
   };
 
   HttpResponse Status();

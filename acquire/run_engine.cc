@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "acquire/auto_bracket.h"
+#include "acquire/plan_check.h"
 #include "acquire/test_hooks.h"
 
 namespace brdfrig::acquire {
@@ -86,6 +87,10 @@ RunEngine::RunEngine(rig::Rig& rig, SessionStore& store, Plan plan, RunOptions o
       }
     }
   }
+  // Until a position is done, the ETA comes from the plan check's estimate.
+  const PlanCheckReport estimate = CheckPlan(plan_, rig_.description);
+  estimated_position_s_ =
+      estimate.EstimatedDurationS() / std::max<std::size_t>(1, plan_.positions.size());
   progress_.positions = static_cast<int>(plan_.positions.size());
   progress_.frames_per_position = plan_.BracketSize();
   progress_.frames_total = progress_.positions * progress_.frames_per_position;
@@ -369,6 +374,7 @@ void RunEngine::CapturePosition(int p) {
     std::lock_guard lock(mutex_);
     progress_.position = p;
     progress_.frame = 0;
+    if (position_model_s_.empty()) progress_.eta_s = estimated_position_s_ * remaining_;
   }
   MoveTo(p);
   SetState(RunState::kAcquiring);
@@ -438,6 +444,7 @@ RunSummary RunEngine::Run(bool resumed) {
       while (!work.empty()) {
         const int p = work.front();
         work.pop_front();
+        remaining_ = static_cast<double>(work.size() + 1);
         CapturePosition(p);
         {
           std::lock_guard lock(mutex_);

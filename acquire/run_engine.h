@@ -145,6 +145,8 @@ class RunEngine {
   RunSummary summary_;
   rig::AxisPositions readings_;           // last read-back of every axis
   std::vector<double> position_model_s_;  // model time per completed position (for the ETA)
+  double estimated_position_s_ = 0;       // the plan check's estimate, before any is done
+  double remaining_ = 0;                  // positions left, the current one included
 };
 
 }  // namespace brdfrig::acquire

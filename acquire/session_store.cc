@@ -1,6 +1,7 @@
 #include "acquire/session_store.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -161,6 +162,11 @@ std::string UtcNow() {
 SessionStore::SessionStore(fs::path dir, std::unique_ptr<SqliteDb> db)
     : dir_(std::move(dir)), db_(std::move(db)) {}
 
+SessionStore::~SessionStore() {
+  db_.reset();
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
 std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, const Plan& plan,
                                                    const rig::RigDescription& rig) {
   ValidateSessionName(final_dir.filename().string());
@@ -259,15 +265,33 @@ std::unique_ptr<SessionStore> SessionStore::Open(const fs::path& dir) {
   if (!fs::exists(dir / "session.sqlite")) {
     throw Error("'" + dir.string() + "' is not a session (no session.sqlite)");
   }
-  auto db = std::make_unique<SqliteDb>(dir / "session.sqlite", SqliteDb::Mode::kReadWrite);
+  // One writer per session: a second capture or daemon on the same session would interleave
+  // frames. flock() is released by the kernel when the holder dies, so a crash never leaves
+  // the session locked.
+  const fs::path lock_file = dir / "session.lock";
+  const int lock_fd = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd < 0) ThrowSystem("cannot open", lock_file, errno);
+  if (::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(lock_fd);
+    throw Error("session '" + dir.string() + "' is in use by another capture or the daemon");
+  }
+  std::unique_ptr<SqliteDb> db;
+  try {
+    db = std::make_unique<SqliteDb>(dir / "session.sqlite", SqliteDb::Mode::kReadWrite);
+  } catch (...) {
+    ::close(lock_fd);
+    throw;
+  }
   db->Exec("PRAGMA synchronous=FULL");
-  Statement check(*db, "SELECT COUNT(*) FROM session");
+  auto store = std::unique_ptr<SessionStore>(new SessionStore(dir, std::move(db)));
+  store->lock_fd_ = lock_fd;  // released by the destructor, whatever happens below
+  Statement check(*store->db_, "SELECT COUNT(*) FROM session");
   if (!check.Step() || check.Int(0) != 1) {
     throw Error("'" + dir.string() +
                 "' has no start record (its creation was interrupted); "
                 "remove it and start again");
   }
-  return std::unique_ptr<SessionStore>(new SessionStore(dir, std::move(db)));
+  return store;
 }
 
 std::string SessionStore::PlanText() {
@@ -282,6 +306,13 @@ std::string SessionStore::PlanSource() {
   Statement s(*db_, "SELECT plan_source FROM session");
   s.Step();
   return s.Text(0);
+}
+
+bool SessionStore::HasRuns() {
+  std::lock_guard lock(mutex_);
+  Statement s(*db_, "SELECT COUNT(*) FROM runs");
+  s.Step();
+  return s.Int(0) > 0;
 }
 
 void SessionStore::BeginRun(bool resumed) {

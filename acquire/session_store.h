@@ -5,6 +5,7 @@
 //   <session>/plan.yaml        the plan as submitted
 //   <session>/rig/             copies of the rig file, its geometry file and scene files
 //   <session>/frames/p003_b1.png   position 3, bracket 1 (extension from the camera)
+//   <session>/session.lock     flock'ed by the one process writing the session
 //
 // A frame is written to a temporary name, fsync'ed, renamed, the directory fsync'ed, and only
 // then recorded, in one transaction that also marks its position complete when it is the
@@ -57,13 +58,19 @@ class SessionStore {
   // directory: a session is never overwritten.
   static std::unique_ptr<SessionStore> Create(const std::filesystem::path& dir, const Plan& plan,
                                               const rig::RigDescription& rig);
-  // Opens an existing session to resume it.
+  // Opens an existing session to resume it. Throws when another process has it open.
   static std::unique_ptr<SessionStore> Open(const std::filesystem::path& dir);
+
+  ~SessionStore();
+  SessionStore(const SessionStore&) = delete;
+  SessionStore& operator=(const SessionStore&) = delete;
 
   const std::filesystem::path& dir() const { return dir_; }
   std::string PlanText();
   std::string PlanSource();
 
+  // Whether a run was ever started (a session created but never run has none).
+  bool HasRuns();
   // Starts a run (the first, or a resumption) in the run log.
   void BeginRun(bool resumed);
   // Discards what an interrupted run left of incomplete positions: their rows, their files
@@ -92,6 +99,7 @@ class SessionStore {
   std::unique_ptr<SqliteDb> db_;
   std::mutex mutex_;
   std::int64_t run_id_ = 0;
+  int lock_fd_ = -1;  // flock'ed while this store is open
 };
 
 // UTC now, ISO 8601 with milliseconds ("2026-11-29T17:03:17.123Z").

@@ -232,27 +232,37 @@ TEST_F(DaemonTest, LoopbackTcpNeedsTheBearerToken) {
   EXPECT_EQ(Client().Status()["state"], "idle");
 }
 
-TEST_F(DaemonTest, RestartResumesASessionTheDaemonWasRunningWhenConfigured) {
+TEST_F(DaemonTest, RestartResumesTheRunningSessionAndTheQueueWhenConfigured) {
   {
     Daemon daemon(config_);
     Client().Submit("interrupted", LongPlan());
+    Client().Submit("waiting", testing::SmallPlanYaml());
     WaitForStatus([](const json& s) {
       return s.contains("progress") && s["progress"]["frames_recorded"].get<int>() >= 2;
     });
-  }  // the daemon stops mid-session
+    const json listed = Client().Sessions();
+    ASSERT_EQ(listed["sessions"].size(), 2u);
+    EXPECT_EQ(listed["sessions"][0]["exit_status"], "running");
+    EXPECT_EQ(listed["sessions"][1]["exit_status"], "queued");
+  }  // the daemon stops mid-session, with one session still queued
   EXPECT_FALSE(ReadSession(config_.data_dir / "interrupted").Complete());
   {
-    Daemon daemon(config_);  // not configured to resume: lists it as resumable
-    EXPECT_EQ(Client().Sessions()["sessions"][0]["resumable"], true);
+    Daemon daemon(config_);  // not configured to resume: lists both as resumable
+    const json listed = Client().Sessions();
+    ASSERT_EQ(listed["sessions"].size(), 2u);
+    EXPECT_EQ(listed["sessions"][0]["resumable"], true);
+    EXPECT_EQ(listed["sessions"][1]["resumable"], true);
     EXPECT_EQ(Client().Status()["state"], "idle");
   }
   config_.resume_interrupted = true;
   Daemon daemon(config_);
   daemon.WaitIdle();
-  const SessionContents s = ReadSession(config_.data_dir / "interrupted");
-  EXPECT_EQ(s.exit_status, "success");
-  EXPECT_EQ(s.frames.size(), 16u);
-  EXPECT_TRUE(VerifySession(config_.data_dir / "interrupted").ok());
+  for (const auto& [name, frames] : {std::pair{"interrupted", 16u}, std::pair{"waiting", 6u}}) {
+    const SessionContents s = ReadSession(config_.data_dir / name);
+    EXPECT_EQ(s.exit_status, "success") << name;
+    EXPECT_EQ(s.frames.size(), frames) << name;
+    EXPECT_TRUE(VerifySession(config_.data_dir / name).ok()) << name;
+  }
 }
 
 }  // namespace

@@ -168,6 +168,25 @@ TEST(FaultsTest, DiskFullFailsTheRunKeepsWhatWasRecordedAndResumes) {
   ExpectCompleteAfterResume(rig, "s");
 }
 
+TEST(FaultsTest, FramesFailingTheirCheckRedoThePositionThenFailWithNothingRecorded) {
+  // A sensor so insensitive that every frame is black (as with the lens cap on).
+  std::string scene = testing::SmallSceneYaml();
+  scene.replace(scene.find("gain: 10"), 8, "gain: 0.0001");
+  const auto rig = testing::MakeTestRig("fault_black");
+  std::ofstream(rig.dir / "scene.yaml") << scene;
+  const CaptureSummary summary = RunCapture(Options(rig, "s"));
+  EXPECT_EQ(summary.run.status, ExitStatus::kFailed);
+  EXPECT_NE(summary.run.reason.find("keep failing their check"), std::string::npos)
+      << summary.run.reason;
+  // Each position is redone at most RetryPolicy::max_position_redos (2) times; how many
+  // positions were captured before the first rejection came back depends on the writer.
+  EXPECT_GE(summary.run.redos, 2);
+  EXPECT_LE(summary.run.redos, 6);
+  EXPECT_TRUE(AnyEventHas(rig.sessions / "s", "all black"));
+  EXPECT_TRUE(ReadSession(rig.sessions / "s").frames.empty());
+  ExpectIntact(rig.sessions / "s");
+}
+
 TEST(FaultsTest, PauseStopsAtASafePointResumeContinuesAbortEndsResumably) {
   const auto rig = testing::MakeTestRig("operator_controls");
   CaptureOptions options = Options(rig, "s");

@@ -86,6 +86,24 @@ TEST(SessionTest, NamesThatEscapeOrHideAreRefusedAndSessionsAreNeverOverwritten)
   }
 }
 
+TEST(SessionTest, ASessionHasOneWriterAtATime) {
+  const auto rig = testing::MakeTestRig("session_lock");
+  // A trailing slash names the same session.
+  CaptureOptions options = Options(rig, "locked");
+  options.output_dir = rig.sessions / "locked/";
+  ASSERT_EQ(RunCapture(options).run.status, ExitStatus::kSuccess);
+  const auto first = SessionStore::Open(rig.sessions / "locked");
+  try {
+    SessionStore::Open(rig.sessions / "locked");
+    FAIL() << "a second writer opened the session";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("in use"), std::string::npos) << e.what();
+  }
+  // Readers are not writers: reading and verifying work meanwhile.
+  EXPECT_EQ(ReadSession(rig.sessions / "locked").frames.size(), 6u);
+  EXPECT_TRUE(VerifySession(rig.sessions / "locked").ok());
+}
+
 TEST(SessionTest, VerifyFindsMissingExtraAndChangedFiles) {
   const auto rig = testing::MakeTestRig("session_verify");
   ASSERT_EQ(RunCapture(Options(rig, "v")).run.status, ExitStatus::kSuccess);
