@@ -13,6 +13,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "tests/sim/test_scene.h"
 
@@ -37,14 +38,19 @@ Result Brdfrig(const std::string& arguments) {
 // `brdfrig rig simdrive --tcp 0` in the background; its first line names the port.
 class SimDrive {
  public:
-  SimDrive() {
+  explicit SimDrive(std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {BRDFRIG_BINARY, "rig", "simdrive", "--tcp", "0"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
     int out[2];
     if (pipe(out) != 0) return;
     pid_ = fork();
     if (pid_ == 0) {
       dup2(out[1], STDOUT_FILENO);
       close(out[0]);
-      execl(BRDFRIG_BINARY, BRDFRIG_BINARY, "rig", "simdrive", "--tcp", "0", nullptr);
+      execv(BRDFRIG_BINARY, argv.data());
       _exit(127);
     }
     close(out[1]);
@@ -142,6 +148,17 @@ TEST_F(RigCliTest, CheckExitsNonZeroWithTheReasonWhenADriveIsMissing) {
   EXPECT_NE(check.output.find("cannot connect"), std::string::npos) << check.output;
   EXPECT_NE(check.output.find("brdfrig: error: rig check failed"), std::string::npos)
       << check.output;
+}
+
+TEST_F(RigCliTest, AnAlarmRehearsedWithSimdriveEndsTheMoveWithItsCodeAndAStop) {
+  SimDrive drive({"--alarm-at", "0.5", "--alarm-code", "66"});
+  ASSERT_GT(drive.port(), 0);
+  const Result move = Brdfrig("rig move --rig " + WriteRig(drive.port()) + " light_arm 20");
+  EXPECT_EQ(move.status, 1) << move.output;
+  EXPECT_NE(move.output.find("drive alarm 0x42"), std::string::npos) << move.output;
+  EXPECT_NE(move.output.find("the drive was stopped"), std::string::npos) << move.output;
+  const Result stopped = drive.Stop();
+  EXPECT_EQ(stopped.output.find(", 0 stops"), std::string::npos) << stopped.output;
 }
 
 TEST_F(RigCliTest, SimdriveNeedsExactlyOneTransport) {
