@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 
+#include "acquire/capture.h"
 #include "brdf/metrics.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -12,8 +13,8 @@
 #include "evaluate/report.h"
 #include "evaluate/svg_plot.h"
 #include "reconstruct/batch.h"
+#include "sim/devices.h"
 #include "sim/scene.h"
-#include "sim/simulate.h"
 
 namespace brdfrig::evaluate {
 namespace {
@@ -23,6 +24,32 @@ constexpr double kDeg = M_PI / 180;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// rig.yaml with every device on the simulator's backend, all naming the demo's scene.
+std::string SimulatedRigYaml(const fs::path& scene_file, const sim::Scene& scene) {
+  const std::string at = "{backend: sim, scene: \"" + scene_file.string() + "\"}";
+  std::string yaml = "geometry: \"" + scene_file.string() + "\"\ncamera: " + at + "\naxes:\n";
+  for (const rig::RotationAxis& axis : scene.rig.axes) yaml += "  " + axis.name + ": " + at + "\n";
+  return yaml + "light: " + at + "\n";
+}
+
+// plan.yaml for the scene's capture section (angles in degrees, as people write them).
+std::string PlanYaml(const sim::Scene& scene) {
+  std::string yaml =
+      "sample: demo\noperator: brdfrig demo\nnotes: \"" + scene.Summary() + "\"\npositions:\n";
+  for (const rig::AxisPositions& position : scene.capture.positions) {
+    std::string entry;
+    for (const auto& [axis, angle] : position) {
+      entry += (entry.empty() ? "" : ", ") + axis + ": " + Fixed(angle / kDeg, 6);
+    }
+    yaml += "  - {" + entry + "}\n";
+  }
+  std::string exposures;
+  for (double t : scene.capture.exposures) {
+    exposures += (exposures.empty() ? "" : ", ") + Fixed(t, 9);
+  }
+  return yaml + "exposures: [" + exposures + "]\n";
 }
 
 }  // namespace
@@ -47,20 +74,36 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   fs::create_directories(out / "views");
   const sim::Scene scene = sim::LoadScene(options.scene);
 
-  // 1. Capture with the simulated rig.
+  // 1. Capture through the acquisition engine with the simulated rig: the same plan, run
+  // engine and session store a lab uses, only the devices' backend differs. A session already
+  // in the directory is resumed (a finished one is left as it is).
   say("[1/4] capturing " + std::to_string(scene.capture.positions.size()) + " positions × " +
       std::to_string(scene.capture.exposures.size()) + " exposures (simulated rig)");
   auto start = std::chrono::steady_clock::now();
-  sim::SimulateOptions simulate;
-  simulate.scene = options.scene;
-  simulate.output_dir = out / "capture";
-  const sim::SimulateSummary captured = sim::Simulate(simulate);
+  sim::RegisterSimBackends();
+  WriteFileAtomically(out / "rig.yaml", SimulatedRigYaml(fs::absolute(options.scene), scene));
+  WriteFileAtomically(out / "plan.yaml", PlanYaml(scene));
+  acquire::CaptureOptions capture_options;
+  capture_options.rig_file = out / "rig.yaml";
+  capture_options.plan_file = out / "plan.yaml";
+  capture_options.output_dir = out / "session";
+  capture_options.resume = fs::exists(out / "session" / "session.sqlite");
+  int last_position = -1;
+  capture_options.on_progress = [&](const acquire::RunProgress& p) {
+    if (p.position == last_position || p.positions == 0) return;
+    last_position = p.position;
+    say("      position " + std::to_string(p.position + 1) + "/" + std::to_string(p.positions));
+  };
+  const acquire::CaptureSummary captured = acquire::RunCapture(capture_options);
+  if (captured.run.status != acquire::ExitStatus::kSuccess) {
+    throw Error("demo: the simulated capture stopped: " + captured.run.reason);
+  }
   const double capture_s = SecondsSince(start);
 
   // 2. Reconstruct.
   say("[2/4] reconstructing");
   start = std::chrono::steady_clock::now();
-  const reconstruct::CaptureSet capture = reconstruct::LoadCapture(out / "capture");
+  const reconstruct::CaptureSet capture = reconstruct::LoadCapture(out / "session");
   reconstruct::ReconstructOptions reconstruct_options;
   reconstruct_options.hdr_dir = out / "hdr";
   reconstruct::ReconstructionResult result = reconstruct::Reconstruct(
@@ -89,14 +132,16 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   report.title = "brdfrig demo: " + scene.Summary();
   ReportSection overview{"Overview", {}, {}, {}, {}};
   overview.paragraphs.push_back(
-      "A simulated capture of " + options.scene.string() + " (" + std::to_string(captured.frames) +
-      " photos at " + std::to_string(captured.positions) + " positions; the rig would take " +
-      Fixed(captured.virtual_time_s, 1) +
-      " s), reconstructed into the seed's slice model, then compared with photos of views "
-      "not used for the fit (the light turned by phi about the sample normal).");
+      "A capture of " + options.scene.string() + " by the acquisition engine with simulated " +
+      "devices (session in session/: " + std::to_string(capture.positions.size()) +
+      " positions; the rig's clock says " + Fixed(captured.run.timing.session_s, 1) + " s, " +
+      Fixed(captured.run.timing.Ratio(), 3) +
+      "× the unavoidable moves, exposures and downloads), reconstructed into the seed's slice "
+      "model, then compared with photos of views not used for the fit (the light turned by phi "
+      "about the sample normal).");
   overview.tables.push_back(
       {"Wall time per step (s)",
-       {"capture (simulation)", "reconstruction", "held-out evaluation"},
+       {"capture (simulated devices)", "reconstruction", "held-out evaluation"},
        {{Fixed(capture_s, 1), Fixed(reconstruct_s, 1), Fixed(evaluate_s, 1)}}});
   report.sections.push_back(overview);
 

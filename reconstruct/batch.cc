@@ -64,7 +64,9 @@ bool IsCaptureDirectory(const fs::path& dir) {
          fs::exists(dir / "capture.json");
 }
 
-CaptureSet LoadCapture(const fs::path& dir) { return LoadSimulatedCapture(dir); }
+CaptureSet LoadCapture(const fs::path& dir) {
+  return fs::exists(dir / "session.sqlite") ? LoadSessionCapture(dir) : LoadSimulatedCapture(dir);
+}
 
 std::string CaptureFingerprint(const CaptureSet& capture) {
   Sha256 hash;

@@ -3,9 +3,11 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "acquire/session_reader.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/yaml_reader.h"
+#include "reconstruct/raw_photo.h"
 
 namespace brdfrig::reconstruct {
 
@@ -46,6 +48,47 @@ CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir) {
     throw FileError(manifest.string(), std::string("unexpected content: ") + e.what());
   }
   if (set.positions.empty()) throw FileError(manifest.string(), "no frames recorded");
+  return set;
+}
+
+CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
+  const acquire::SessionContents session = acquire::ReadSession(dir);
+  CaptureSet set;
+  set.name = dir.string();
+  set.nominal = session.rig.geometry;
+  if (session.exit_status != "success") {
+    set.warnings.push_back("session " + session.name + " ended '" + session.exit_status + "'" +
+                           (session.stop_reason.empty() ? "" : " (" + session.stop_reason + ")") +
+                           ": using its complete positions");
+  }
+  // One file per (position, bracket): RAW when the camera also wrote a JPEG.
+  std::map<int, std::map<int, const acquire::RecordedFrame*>> shots;
+  for (const acquire::RecordedFrame& frame : session.frames) {
+    const acquire::RecordedFrame*& kept = shots[frame.position_index][frame.bracket_index];
+    if (kept == nullptr || (IsRawPhoto(frame.file) && !IsRawPhoto(kept->file))) kept = &frame;
+  }
+  for (const auto& [index, bracket] : shots) {
+    const std::size_t planned =
+        index < static_cast<int>(session.planned_brackets.size())
+            ? session.planned_brackets[static_cast<std::size_t>(index)].size()
+            : 0;
+    if (bracket.size() < planned) {
+      set.warnings.push_back(
+          "position " + std::to_string(index) + " left out: " + std::to_string(bracket.size()) +
+          " of " + std::to_string(planned) + " exposures recorded (the run stopped inside it)");
+      continue;
+    }
+    CapturePosition position;
+    position.index = index;
+    position.axis_readings = bracket.begin()->second->axis_readings;
+    for (const auto& [bracket_index, frame] : bracket) {
+      position.frames.push_back({frame->file, frame->exposure_s});
+    }
+    set.positions.push_back(std::move(position));
+  }
+  if (set.positions.empty()) {
+    throw FileError((dir / "session.sqlite").string(), "no complete position recorded");
+  }
   return set;
 }
 

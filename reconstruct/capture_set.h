@@ -27,11 +27,18 @@ struct CaptureSet {
   std::string name;          // for reports, e.g. the session directory
   rig::RigGeometry nominal;  // intrinsics, target, nominal light geometry
   std::vector<CapturePosition> positions;
+  std::vector<std::string> warnings;  // what the loader left out, and why
 };
 
 // Reads the photos/capture.json written by `brdfrig simulate` (or `brdfrig capture --sim`),
 // with the nominal geometry from the scene file it names. Throws FileError for a malformed
 // file, a missing photo or a missing scene.
 CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir);
+
+// Reads an acquisition session (session.sqlite) through acquire::ReadSession, with the nominal
+// geometry from the session's own rig snapshot. Only positions whose bracket is complete are
+// used (an interrupted session's last position is left out with a warning); where a shot gave
+// RAW + JPEG, the RAW file is used. Throws brdfrig::Error when the session cannot be read.
+CaptureSet LoadSessionCapture(const std::filesystem::path& dir);
 
 }  // namespace brdfrig::reconstruct

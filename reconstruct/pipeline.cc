@@ -117,6 +117,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     if (progress) progress(message);
   };
   ReconstructionResult result;
+  result.warnings = capture.warnings;
+  for (const std::string& w : capture.warnings) say("warning: " + w);
   auto& seconds = result.stage_seconds;
   const rig::RigGeometry& nominal = capture.nominal;
   if (!options.hdr_dir.empty()) std::filesystem::create_directories(options.hdr_dir);

@@ -503,7 +503,11 @@ std::vector<Frame> Gphoto2Camera::Capture() {
     if (result < GP_OK) break;  // drivers without events (or errors): nothing more to drain
     if (type == GP_EVENT_FILE_ADDED && data != nullptr) {
       const auto* added = static_cast<const CameraFilePath*>(data);
-      files.push_back({added->folder, added->name});
+      // Some bodies announce the file gp_camera_capture already returned: keep each once.
+      const bool known = std::any_of(files.begin(), files.end(), [&](const CameraFileRef& f) {
+        return f.folder == added->folder && f.name == added->name;
+      });
+      if (!known) files.push_back({added->folder, added->name});
     }
     free(data);
     if (type == GP_EVENT_TIMEOUT) break;

@@ -28,7 +28,9 @@ std::unique_ptr<Axis> OpenModbusAxis(const YamlNode& settings, const DeviceConte
 
 std::unique_ptr<Light> OpenModbusLight(const YamlNode& settings, const DeviceContext&) {
   const ModbusLinkOptions link = ReadModbusLinkOptions(settings);
-  const int slave = settings.Get("slave", 1);
+  int slave = 1;  // 0 would be a broadcast, which gets no answer
+  if (const auto n = settings.Optional("slave"))
+    slave = static_cast<int>(n->InRange(n->AsInt(), 1, 247));
   const YamlNode coil = settings.Required("coil");
   const int address = static_cast<int>(coil.InRange(coil.AsInt(), 0, 65535));
   settings.Finish();

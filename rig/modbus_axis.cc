@@ -32,7 +32,7 @@ std::string Hex(int code) {
 }  // namespace
 
 void ModbusAxisOptions::Validate() const {
-  if (slave < 0 || slave > 247) throw OptionsError("modbus axis: slave must be 0..247");
+  if (slave < 1 || slave > 247) throw OptionsError("modbus axis: slave must be 1..247");
   if (!(steps_per_degree > 0)) throw OptionsError("modbus axis: steps_per_degree must be > 0");
   if (!(min_deg < max_deg)) throw OptionsError("modbus axis: min_deg must be below max_deg");
   if (!(speed_deg_s > 0)) throw OptionsError("modbus axis: speed_deg_s must be > 0");
@@ -45,7 +45,7 @@ void ModbusAxisOptions::Validate() const {
 ModbusAxisOptions ReadModbusAxisOptions(const YamlNode& settings) {
   ModbusAxisOptions o;
   if (const auto n = settings.Optional("slave"))
-    o.slave = static_cast<int>(n->InRange(n->AsInt(), 0, 247));
+    o.slave = static_cast<int>(n->InRange(n->AsInt(), 1, 247));
   if (const auto n = settings.Optional("steps_per_degree"))
     o.steps_per_degree = n->Positive(n->AsDouble());
   if (const auto n = settings.Optional("min_deg")) o.min_deg = n->AsDouble();

@@ -6,7 +6,8 @@
 //   # geometry: {camera: {...}, light: {...}, axes: [...], target: {...}}
 //   camera: {backend: gphoto2, model: "Nikon D750"}
 //   axes:
-//     light_arm: {backend: modbus, transport: tcp, host: 192.168.0.20, slave: 1, profile: az}
+//     light_arm: {backend: modbus, transport: tcp, host: 192.168.0.20, slave: 1,
+//               profile: oriental_az_direct}   # keys: docs/rig.md
 //     camera_arm: {backend: sim, scene: scenes/default.yaml}
 //   light: {backend: sim, scene: scenes/default.yaml}          # optional (switched light)
 //

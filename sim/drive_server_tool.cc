@@ -15,6 +15,11 @@ void SimDriveOptions::Validate() const {
   }
   if (tcp_port > 65535) throw OptionsError("rig simdrive: --tcp port must be 0..65535");
   if (slave < 1 || slave > 247) throw OptionsError("rig simdrive: --slave must be 1..247");
+  if (faults.drop_responses < 0 || faults.corrupt_responses < 0 || faults.exception_responses < 0) {
+    throw OptionsError("rig simdrive: fault counts must be >= 0");
+  }
+  if (faults.alarm_at_fraction > 1) throw OptionsError("rig simdrive: --alarm-at must be 0..1");
+  if (!(faults.speed_factor > 0)) throw OptionsError("rig simdrive: --slow must be > 0");
 }
 
 void RunSimulatedDrive(const SimDriveOptions& options) {
@@ -35,6 +40,7 @@ void RunSimulatedDrive(const SimDriveOptions& options) {
   pthread_sigmask(SIG_BLOCK, &signals, &previous);
   {
     ModbusDriveServer server(profile, server_options);
+    server.InjectFaults(options.faults);
     std::printf("simulated drive (profile %s, slave %d) serving on %s\n", profile.name.c_str(),
                 options.slave, server.Endpoint().c_str());
     if (options.pty) {
@@ -53,8 +59,11 @@ void RunSimulatedDrive(const SimDriveOptions& options) {
     int received = 0;
     sigwait(&signals, &received);
     const DriveServerCounters c = server.counters();
-    std::printf("stopped: %d requests, %d moves, %d stops, final position %d steps\n", c.requests,
-                c.moves, c.stops, server.position_steps());
+    std::printf(
+        "stopped: %d requests (%d dropped, %d corrupted, %d exceptions), %d moves, %d stops, "
+        "final position %d steps\n",
+        c.requests, c.dropped, c.corrupted, c.exceptions, c.moves, c.stops,
+        server.position_steps());
   }
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "sim/modbus_drive_server.h"
+
 namespace brdfrig::sim {
 
 struct SimDriveOptions {
@@ -11,6 +13,7 @@ struct SimDriveOptions {
   int tcp_port = -1;                           // >= 0: serve TCP on 127.0.0.1 (0: any port)
   bool pty = false;                            // serve RTU on a new pseudo-terminal
   int slave = 1;
+  DriveFaults faults;     // injected at start, to rehearse what an operator will see
   void Validate() const;  // exactly one of TCP and pty; throws OptionsError
 };
 

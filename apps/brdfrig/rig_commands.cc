@@ -20,6 +20,19 @@ struct RigArgs {
   sim::SimDriveOptions simdrive;
 };
 
+// Faults for the simulated drive, to rehearse what an operator sees (docs/rig.md, faults).
+void DriveFaultsOptions(CLI::App* cmd, sim::DriveFaults& faults) {
+  cmd->add_option("--drop", faults.drop_responses, "Leave the next N requests unanswered");
+  cmd->add_option("--corrupt", faults.corrupt_responses, "Corrupt the next N answers");
+  cmd->add_option("--exceptions", faults.exception_responses,
+                  "Answer the next N requests with --exception-code");
+  cmd->add_option("--exception-code", faults.exception_code, "Modbus exception code (default 6)");
+  cmd->add_option("--alarm-at", faults.alarm_at_fraction,
+                  "Raise an alarm at this fraction (0..1) of the first move");
+  cmd->add_option("--alarm-code", faults.alarm_code, "Alarm code (default 0x30 = 48)");
+  cmd->add_option("--slow", faults.speed_factor, "Move at this fraction of the commanded speed");
+}
+
 }  // namespace
 
 void RegisterRigCommands(CLI::App& app) {
@@ -62,6 +75,7 @@ void RegisterRigCommands(CLI::App& app) {
   simdrive->add_option("--tcp", args->simdrive.tcp_port, "Serve TCP on 127.0.0.1:PORT (0: any)");
   simdrive->add_flag("--pty", args->simdrive.pty, "Serve RTU on a new pseudo-terminal");
   simdrive->add_option("--slave", args->simdrive.slave, "Modbus slave id (default 1)");
+  DriveFaultsOptions(simdrive, args->simdrive.faults);
   simdrive->callback([args] { sim::RunSimulatedDrive(args->simdrive); });
 }
 

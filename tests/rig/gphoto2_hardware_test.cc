@@ -1,6 +1,7 @@
 // Needs a real tethered camera (label `hardware`, excluded from CI): run in the lab with
 //   ctest --preset release -L hardware
-// Optional environment: BRDFRIG_CAMERA_MODEL, BRDFRIG_CAMERA_PORT (default: first found).
+// Optional environment: BRDFRIG_CAMERA_MODEL, BRDFRIG_CAMERA_PORT (default: first found),
+// BRDFRIG_CAMERA_CAPTURE_TARGET (card or ram).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,7 +23,10 @@ Gphoto2Options FromEnvironment() {
   Gphoto2Options options;
   if (const char* model = std::getenv("BRDFRIG_CAMERA_MODEL")) options.model = model;
   if (const char* port = std::getenv("BRDFRIG_CAMERA_PORT")) options.port = port;
-  options.capture_target = "ram";
+  // Not every body has capturetarget (many Sony models do not): only when asked for.
+  if (const char* target = std::getenv("BRDFRIG_CAMERA_CAPTURE_TARGET")) {
+    options.capture_target = target;
+  }
   return options;
 }
 

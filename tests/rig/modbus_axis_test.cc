@@ -229,6 +229,19 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{DriveServerOptions::Transport::kPty, "generic"}),
     CaseName);
 
+TEST(ModbusLinkTest, DevicesOnOneEndpointShareOneLinkWhileAnyIsAlive) {
+  ModbusLinkOptions bus;
+  bus.transport = ModbusLinkOptions::Transport::kRtu;
+  bus.device = "/dev/ttyUSB7";
+  auto first = SharedModbusLink(bus);
+  EXPECT_EQ(SharedModbusLink(bus), first);  // a second slave on the same RS-485 bus
+  ModbusLinkOptions other = bus;
+  other.device = "/dev/ttyUSB8";
+  EXPECT_NE(SharedModbusLink(other), first);
+  first.reset();
+  EXPECT_EQ(SharedModbusLink(bus).use_count(), 1);  // a fresh link once the last user is gone
+}
+
 TEST(ModbusLinkTest, ConnectionRefusedIsAClearError) {
   ModbusLinkOptions options;
   options.port = 1;  // nothing listens on port 1 of loopback

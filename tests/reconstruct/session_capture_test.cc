@@ -1,0 +1,94 @@
+// Reconstruction from an acquisition session: the run engine captures with simulated devices
+// into a session directory, and the reconstruction reads it back through acquire::ReadSession.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "acquire/capture.h"
+#include "reconstruct/batch.h"
+#include "reconstruct/pipeline.h"
+#include "sim/devices.h"
+#include "tests/reconstruct/capture_fixture.h"
+
+namespace brdfrig::reconstruct {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SessionSetup {
+  fs::path dir;
+  acquire::CaptureOptions capture;
+};
+
+// scene.yaml (an ideal sensor, the slice-model truth), rig.yaml with every device simulated,
+// and plan.yaml with three positions of three exposures.
+SessionSetup MakeSession(const std::string& name) {
+  SessionSetup s;
+  s.dir = fs::temp_directory_path() / ("brdfrig_session_capture_" + name);
+  fs::remove_all(s.dir);
+  fs::create_directories(s.dir);
+  brdf::WriteMaterialFile(s.dir / "truth.json", testing::FlatSliceTruth());
+  std::ofstream(s.dir / "scene.yaml") << testing::SceneYaml(testing::SceneSpec{});
+  std::ofstream(s.dir / "rig.yaml") << "geometry: scene.yaml\n"
+                                       "camera: {backend: sim, scene: scene.yaml}\n"
+                                       "axes:\n"
+                                       "  camera_arm: {backend: sim, scene: scene.yaml}\n"
+                                       "  light_arm: {backend: sim, scene: scene.yaml}\n";
+  std::ofstream(s.dir / "plan.yaml") << "sample: flat-slices\n"
+                                        "positions:\n"
+                                        "  - {camera_arm: 20, light_arm: -20}\n"
+                                        "  - {camera_arm: 35, light_arm: -35}\n"
+                                        "  - {camera_arm: 50, light_arm: -50}\n"
+                                        "exposures: [0.001, 0.008, 0.0666667]\n"
+                                        "settle_s: 0\n";
+  sim::RegisterSimBackends();
+  s.capture.rig_file = s.dir / "rig.yaml";
+  s.capture.plan_file = s.dir / "plan.yaml";
+  s.capture.output_dir = s.dir / "session";
+  return s;
+}
+
+TEST(SessionCapture, IdealSessionIsRecoveredToOnePartInAThousand) {
+  SessionSetup s = MakeSession("ideal");
+  ASSERT_EQ(acquire::RunCapture(s.capture).run.status, acquire::ExitStatus::kSuccess);
+  ASSERT_TRUE(IsCaptureDirectory(s.dir / "session"));
+  const CaptureSet capture = LoadCapture(s.dir / "session");
+  EXPECT_TRUE(capture.warnings.empty());
+  ASSERT_EQ(capture.positions.size(), 3u);
+  for (const CapturePosition& p : capture.positions) EXPECT_EQ(p.frames.size(), 3u);
+  EXPECT_NEAR(capture.positions[1].axis_readings.at("camera_arm"), 35 * M_PI / 180, 1e-9);
+
+  const ReconstructionResult result = Reconstruct(capture, {});
+  ASSERT_EQ(result.material.slices.size(), 3u);
+  const brdf::Material truth = testing::FlatSliceTruth();
+  const brdf::Slice& want = truth.slices[0];
+  for (const brdf::Slice& slice : result.material.slices) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(slice.channel[c].a1, want.channel[c].a1, 1e-3 * want.channel[c].a1);
+      EXPECT_NEAR(slice.channel[c].h, want.channel[c].h, 1e-3 * want.channel[c].h);
+    }
+  }
+}
+
+TEST(SessionCapture, AbortedSessionUsesItsCompletePositionsAndSaysSo) {
+  SessionSetup s = MakeSession("aborted");
+  // Abort once the second position has its first frame: position 0 complete, 1 partial.
+  acquire::RunEngine* engine = nullptr;
+  s.capture.on_engine = [&](acquire::RunEngine& e) { engine = &e; };
+  s.capture.on_progress = [&](const acquire::RunProgress& p) {
+    if (p.frames_recorded >= 4 && engine) engine->Abort("test stops the run");
+  };
+  acquire::RunCapture(s.capture);
+  const CaptureSet capture = LoadCapture(s.dir / "session");
+  ASSERT_GE(capture.positions.size(), 1u);
+  EXPECT_LT(capture.positions.size(), 3u);
+  ASSERT_FALSE(capture.warnings.empty());
+  EXPECT_NE(capture.warnings[0].find("aborted"), std::string::npos) << capture.warnings[0];
+  for (const CapturePosition& p : capture.positions) EXPECT_EQ(p.frames.size(), 3u);
+  const ReconstructionResult result = Reconstruct(capture, {});
+  EXPECT_EQ(result.material.slices.size(), capture.positions.size());
+  EXPECT_EQ(result.warnings.front(), capture.warnings.front());
+}
+
+}  // namespace
+}  // namespace brdfrig::reconstruct

@@ -1,0 +1,171 @@
+// The `brdfrig rig` commands as a person runs them: the real executable, a simulated drive
+// started with `brdfrig rig simdrive`, exit statuses and the lines printed. Guards the
+// registration in main.cc (backends and commands) as much as the commands themselves.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/sim/test_scene.h"
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+Result Brdfrig(const std::string& arguments) {
+  Result result;
+  const std::string command = std::string(BRDFRIG_BINARY) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 512> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+// `brdfrig rig simdrive --tcp 0` in the background; its first line names the port.
+class SimDrive {
+ public:
+  explicit SimDrive(std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {BRDFRIG_BINARY, "rig", "simdrive", "--tcp", "0"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    int out[2];
+    if (pipe(out) != 0) return;
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(out[1], STDOUT_FILENO);
+      close(out[0]);
+      execv(BRDFRIG_BINARY, argv.data());
+      _exit(127);
+    }
+    close(out[1]);
+    output_ = fdopen(out[0], "r");
+    char line[512];
+    if (fgets(line, sizeof(line), output_) != nullptr) {
+      const std::string text = line;
+      const auto colon = text.rfind(':');
+      if (colon != std::string::npos) port_ = std::atoi(text.c_str() + colon + 1);
+    }
+  }
+  // Sends Ctrl-C and returns the exit status and the rest of the output.
+  Result Stop() {
+    Result result;
+    kill(pid_, SIGINT);
+    char line[512];
+    while (fgets(line, sizeof(line), output_) != nullptr) result.output += line;
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+  }
+  ~SimDrive() {
+    if (pid_ > 0) Stop();
+    if (output_ != nullptr) fclose(output_);
+  }
+  int port() const { return port_; }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* output_ = nullptr;
+  int port_ = 0;
+};
+
+class RigCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("brdfrig_rig_cli_test_" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ / "scene.yaml") << brdfrig::sim::testing::BaseSceneYaml();
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string WriteRig(int light_arm_port) {
+    std::ofstream(dir_ / "rig.yaml")
+        << "geometry: scene.yaml\n"
+           "camera: {backend: sim, scene: scene.yaml}\n"
+           "axes:\n"
+           "  light_arm: {backend: modbus, transport: tcp, host: 127.0.0.1, port: "
+        << light_arm_port
+        << ", profile: oriental_az_direct, speed_deg_s: 200, accel_deg_s2: 4000, "
+           "timeout_ms: 200, attempts: 2}\n"
+           "  camera_arm: {backend: sim, scene: scene.yaml}\n";
+    return (dir_ / "rig.yaml").string();
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(RigCliTest, CheckMoveAndShootAgainstASimDriveThenCtrlCStopsIt) {
+  SimDrive drive;
+  ASSERT_GT(drive.port(), 0);
+  const std::string rig = WriteRig(drive.port());
+
+  const Result check = Brdfrig("rig check --rig " + rig);
+  EXPECT_EQ(check.status, 0) << check.output;
+  EXPECT_NE(check.output.find("3 of 3 devices OK"), std::string::npos) << check.output;
+
+  const Result move = Brdfrig("rig move --rig " + rig + " light_arm -7.5");
+  EXPECT_EQ(move.status, 0) << move.output;
+  EXPECT_NE(move.output.find("light_arm at -7.500 deg"), std::string::npos) << move.output;
+
+  const std::string photo = (dir_ / "shot.png").string();
+  const Result shoot = Brdfrig("rig shoot --rig " + rig + " --exposure 1/60 -o " + photo);
+  EXPECT_EQ(shoot.status, 0) << shoot.output;
+  EXPECT_TRUE(std::filesystem::exists(photo));
+
+  const Result stopped = drive.Stop();
+  EXPECT_EQ(stopped.status, 0) << stopped.output;
+  EXPECT_NE(stopped.output.find("final position -750 steps"), std::string::npos) << stopped.output;
+}
+
+TEST_F(RigCliTest, CheckExitsNonZeroWithTheReasonWhenADriveIsMissing) {
+  int free_port = 0;
+  {
+    SimDrive drive;  // take a port that then has nobody listening on it
+    free_port = drive.port();
+  }
+  const Result check = Brdfrig("rig check --rig " + WriteRig(free_port));
+  EXPECT_EQ(check.status, 1) << check.output;
+  EXPECT_NE(check.output.find("light_arm   FAIL"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("cannot connect"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("brdfrig: error: rig check failed"), std::string::npos)
+      << check.output;
+}
+
+TEST_F(RigCliTest, AnAlarmRehearsedWithSimdriveEndsTheMoveWithItsCodeAndAStop) {
+  SimDrive drive({"--alarm-at", "0.5", "--alarm-code", "66"});
+  ASSERT_GT(drive.port(), 0);
+  const Result move = Brdfrig("rig move --rig " + WriteRig(drive.port()) + " light_arm 20");
+  EXPECT_EQ(move.status, 1) << move.output;
+  EXPECT_NE(move.output.find("drive alarm 0x42"), std::string::npos) << move.output;
+  EXPECT_NE(move.output.find("the drive was stopped"), std::string::npos) << move.output;
+  const Result stopped = drive.Stop();
+  EXPECT_EQ(stopped.output.find(", 0 stops"), std::string::npos) << stopped.output;
+}
+
+TEST_F(RigCliTest, SimdriveNeedsExactlyOneTransport) {
+  const Result both = Brdfrig("rig simdrive --tcp 0 --pty");
+  EXPECT_EQ(both.status, 1) << both.output;
+  EXPECT_NE(both.output.find("exactly one of --tcp PORT and --pty"), std::string::npos)
+      << both.output;
+}
+
+}  // namespace
