@@ -1,6 +1,7 @@
 #include "acquire/capture.h"
 
 #include "acquire/plan_check.h"
+#include "acquire/rig_snapshot.h"
 #include "acquire/session_store.h"
 #include "common/atomic_file.h"
 
@@ -62,6 +63,13 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
   if (!store) store = SessionStore::Create(dir, plan, description);
   if (!summary.resumed) {
     for (const std::string& w : check.warnings) store->LogEvent("warning", -1, "plan check: " + w);
+  } else {
+    // Resuming with another rig configuration is allowed (a drive replaced, a fixed typo) but
+    // recorded: the frames after this point were taken with it.
+    for (const std::string& change : RigChangesSince(dir, description)) {
+      store->LogEvent("warning", -1, "resume: " + change);
+      summary.warnings.push_back(change);
+    }
   }
   RunEngine engine(rig, *store, plan, options.run, options.on_progress);
   if (options.on_engine) options.on_engine(engine);

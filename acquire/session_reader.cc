@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "acquire/rig_snapshot.h"
 #include "acquire/sqlite_db.h"
 #include "common/yaml_reader.h"
 
@@ -20,29 +21,6 @@ rig::AxisPositions AxesFromJson(const std::string& text) {
 }
 
 }  // namespace
-
-rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
-  const fs::path rig_dir = session_dir / "rig";
-  const fs::path rig_file = rig_dir / "rig.yaml";
-  rig::RigDescription description;
-  description.file = rig_file;
-  description.source_files.push_back(rig_file);
-  const YamlNode root = LoadYamlFile(rig_file.string());
-  const YamlNode geometry = root.Required("geometry");
-  if (geometry.IsScalar()) {
-    // The snapshot keeps the geometry file next to rig.yaml under its own name.
-    const fs::path geometry_file = rig_dir / fs::path(geometry.AsString()).filename();
-    if (!fs::exists(geometry_file)) {
-      geometry.Fail("the session's rig snapshot lacks the geometry file " + geometry_file.string());
-    }
-    description.geometry =
-        rig::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
-    description.source_files.push_back(geometry_file);
-  } else {
-    description.geometry = rig::ParseRigGeometry(geometry);
-  }
-  return description;
-}
 
 bool SessionContents::Complete() const {
   std::map<int, int> shots;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "acquire/rig_snapshot.h"  // ReadRigSnapshot
 #include "rig/geometry.h"
 #include "rig/rig_file.h"
 
@@ -50,8 +51,5 @@ struct SessionContents {
 
 // Throws brdfrig::Error when `dir` is not a readable session.
 SessionContents ReadSession(const std::filesystem::path& dir);
-
-// The rig geometry saved in a session's snapshot (the rig file and its geometry file).
-rig::RigDescription ReadRigSnapshot(const std::filesystem::path& session_dir);
 
 }  // namespace brdfrig::acquire

@@ -10,6 +10,7 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 
+#include "acquire/rig_snapshot.h"
 #include "acquire/test_hooks.h"
 #include "common/atomic_file.h"
 #include "common/sha256.h"
@@ -88,31 +89,6 @@ nlohmann::json AxesJson(const rig::AxisPositions& axes) {
   return j;
 }
 
-// Files referenced by `scene:` keys of the rig's devices (the simulator's scene), so that a
-// session records the world it was captured in.
-std::vector<fs::path> SceneFiles(const fs::path& rig_file) {
-  std::vector<fs::path> files;
-  try {
-    const YAML::Node root = YAML::LoadFile(rig_file.string());
-    auto add = [&](const YAML::Node& device) {
-      if (device.IsMap() && device["scene"] && device["scene"].IsScalar()) {
-        fs::path p = device["scene"].as<std::string>();
-        if (p.is_relative()) p = rig_file.parent_path() / p;
-        files.push_back(p);
-      }
-    };
-    for (const char* key : {"camera", "light"}) {
-      if (root[key]) add(root[key]);
-    }
-    if (root["axes"] && root["axes"].IsMap()) {
-      for (const auto& item : root["axes"]) add(item.second);
-    }
-  } catch (const YAML::Exception&) {
-    // The rig file was already validated by ReadRigDescription; nothing more to add.
-  }
-  return files;
-}
-
 }  // namespace
 
 bool IsValidSessionName(const std::string& name) {
@@ -182,32 +158,10 @@ std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, co
   fs::remove_all(dir);
   fs::create_directory(dir);
   fs::create_directory(dir / "frames");
-  fs::create_directory(dir / "rig");
   WriteFileAtomically(dir / "plan.yaml", plan.text);
 
   // The rig snapshot: every file needed to reprocess the session on its own.
-  struct Snap {
-    std::string name, role;
-    fs::path original;
-  };
-  std::vector<Snap> snaps;
-  std::set<std::string> seen;
-  auto add = [&](const fs::path& original, const std::string& role, std::string name) {
-    std::error_code canon_ec;
-    const std::string key = fs::weakly_canonical(original, canon_ec).string();
-    if (!seen.insert(key).second) return;
-    while (std::any_of(snaps.begin(), snaps.end(), [&](const Snap& s) { return s.name == name; })) {
-      name = "_" + name;
-    }
-    snaps.push_back({name, role, original});
-  };
-  add(rig.file, "rig", "rig.yaml");
-  for (std::size_t i = 1; i < rig.source_files.size(); ++i) {
-    add(rig.source_files[i], "geometry", rig.source_files[i].filename().string());
-  }
-  for (const fs::path& scene : SceneFiles(rig.file)) {
-    if (fs::exists(scene)) add(scene, "scene", scene.filename().string());
-  }
+  const std::vector<SnapshotFile> snapshot = WriteRigSnapshot(dir, rig);
 
   auto db = std::make_unique<SqliteDb>(dir / "session.sqlite", SqliteDb::Mode::kCreate);
   db->Exec("PRAGMA journal_mode=WAL");
@@ -236,19 +190,16 @@ std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, co
       .Bind(11, exposures.dump())
       .Bind(12, plan.BracketSize())
       .Run();
-  for (const Snap& s : snaps) {
-    const std::string content = ReadFileToString(s.original);
-    WriteFileAtomically(dir / "rig" / s.name, content);
+  for (const SnapshotFile& f : snapshot) {
     Statement(*db, "INSERT INTO snapshot_files VALUES (?1, ?2, ?3, ?4)")
-        .Bind(1, s.name)
-        .Bind(2, s.role)
-        .Bind(3, fs::absolute(s.original).string())
-        .Bind(4, Sha256Hex(content))
+        .Bind(1, f.name)
+        .Bind(2, f.role)
+        .Bind(3, f.original.string())
+        .Bind(4, f.sha256)
         .Run();
   }
   tx.Commit();
   db.reset();  // SQLite names its -wal and -shm files by path: close before the rename
-  SyncDirectory(dir / "rig");
   SyncDirectory(dir);
   // rename(2) refuses a non-empty target: a session that appeared meanwhile is kept.
   if (::rename(dir.c_str(), final_dir.c_str()) != 0) {

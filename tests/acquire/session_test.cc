@@ -8,6 +8,7 @@
 #include "acquire/session_reader.h"
 #include "acquire/session_store.h"
 #include "acquire/session_verify.h"
+#include "common/atomic_file.h"
 #include "common/sha256.h"
 #include "tests/acquire/test_rig.h"
 
@@ -129,6 +130,21 @@ TEST(SessionTest, ResumingACompleteSessionCapturesNothingMore) {
   EXPECT_EQ(summary.run.status, ExitStatus::kSuccess);
   EXPECT_EQ(summary.run.frames_recorded, 0);
   EXPECT_EQ(ReadSession(rig.sessions / "r").frames.size(), 6u);
+}
+
+TEST(SessionTest, ResumingWithAChangedRigFileIsRecordedAsAWarning) {
+  const auto rig = testing::MakeTestRig("session_rig_changed");
+  ASSERT_EQ(RunCapture(Options(rig, "r")).run.status, ExitStatus::kSuccess);
+  std::ofstream(rig.rig_file, std::ios::app) << "# drive replaced\n";
+  CaptureOptions again = Options(rig, "r");
+  again.resume = true;
+  const CaptureSummary summary = RunCapture(again);
+  ASSERT_EQ(summary.warnings.size(), 1u);
+  EXPECT_NE(summary.warnings[0].find("rig.yaml changed since the session started"),
+            std::string::npos)
+      << summary.warnings[0];
+  // The session keeps the rig it started with.
+  EXPECT_EQ(ReadFileToString(rig.sessions / "r" / "rig" / "rig.yaml"), testing::RigYaml());
 }
 
 TEST(SessionTest, ResumingWithADifferentPlanIsRefused) {
