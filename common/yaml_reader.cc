@@ -54,7 +54,19 @@ std::optional<YamlNode> YamlNode::Optional(const std::string& key) const {
   if (!IsMap()) Fail("expected a mapping with key '" + key + "'");
   used_keys_->insert(key);
   const YAML::Node child = node_[key];
-  if (!child.IsDefined() || child.IsNull()) return std::nullopt;
+  if (!child.IsDefined()) return std::nullopt;
+  // `key:` with nothing after it is a slip (a value deleted, a typo), not "use the default":
+  // silently falling back would hide it.
+  if (child.IsNull()) {
+    // A null value has no position of its own: point at its key.
+    for (const auto& kv : node_) {
+      if (kv.first.Scalar() != key) continue;
+      const YAML::Mark mark = kv.first.Mark();
+      throw FileError(*file_, mark.line + 1, mark.column + 1,
+                      ChildPath(path_, key) +
+                          ": no value given (write one, or remove the key to use the default)");
+    }
+  }
   return YamlNode(child, file_, ChildPath(path_, key));
 }
 

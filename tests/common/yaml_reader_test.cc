@@ -50,6 +50,12 @@ TEST(YamlReaderTest, MissingRequiredKeyIsAnError) {
               HasSubstr("missing required key 'camera'"));
 }
 
+TEST(YamlReaderTest, KeyWithoutValueIsAnErrorNotTheDefault) {
+  YamlNode root = LoadYamlString("host: 10.0.0.2\nport:\n", "rig.yaml");
+  EXPECT_THAT(ErrorOf([&] { root.Get("port", 502); }),
+              HasSubstr("rig.yaml:2:1: port: no value given"));
+}
+
 TEST(YamlReaderTest, RangeChecksReportTheValue) {
   YamlNode root = LoadYamlString("albedo: 1.5\n", "scene.yaml");
   YamlNode albedo = root.Required("albedo");
