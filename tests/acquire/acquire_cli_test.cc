@@ -1,0 +1,156 @@
+// The acquisition commands as a person runs them: the real `brdfrig` executable, its exit
+// statuses and the lines it prints — plan check, capture (and Ctrl-C during a capture),
+// session verify, and the daemon with its client commands.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "acquire/session_reader.h"
+#include "tests/acquire/test_rig.h"
+
+namespace brdfrig::acquire {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+Result Brdfrig(const std::string& arguments) {
+  Result result;
+  const std::string command = std::string(BRDFRIG_BINARY) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 512> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+pid_t Spawn(const std::vector<std::string>& arguments, const fs::path& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    std::vector<std::string> args = arguments;
+    args.insert(args.begin(), BRDFRIG_BINARY);
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    freopen(log.c_str(), "w", stderr);
+    freopen("/dev/null", "w", stdout);
+    execv(BRDFRIG_BINARY, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+int Wait(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string Q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+TEST(AcquireCliTest, PlanCheckCaptureAndVerifyReportThroughExitStatus) {
+  const auto rig = testing::MakeTestRig("cli_capture");
+  const Result ok = Brdfrig("plan check --rig " + Q(rig.rig_file) + " --plan " + Q(rig.plan_file));
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  EXPECT_NE(ok.output.find("plan OK"), std::string::npos) << ok.output;
+
+  std::ofstream(rig.dir / "bad.yaml") << "sample: s\npositions:\n  - {camera_arm: 20}\n"
+                                         "  - {camera_arm: 95}\n";
+  const Result bad =
+      Brdfrig("plan check --rig " + Q(rig.rig_file) + " --plan " + Q(rig.dir / "bad.yaml"));
+  EXPECT_EQ(bad.status, 1) << bad.output;
+  EXPECT_NE(bad.output.find("bad.yaml:4:"), std::string::npos) << bad.output;
+
+  const std::string capture = "capture --rig " + Q(rig.rig_file) + " --plan " + Q(rig.plan_file) +
+                              " -o " + Q(rig.sessions / "s");
+  const Result captured = Brdfrig(capture);
+  EXPECT_EQ(captured.status, 0) << captured.output;
+  EXPECT_NE(captured.output.find("success"), std::string::npos) << captured.output;
+  EXPECT_EQ(Brdfrig(capture).status, 1);  // never over an existing session
+
+  const Result verified = Brdfrig("session verify " + Q(rig.sessions / "s"));
+  EXPECT_EQ(verified.status, 0) << verified.output;
+  std::ofstream(rig.sessions / "s" / "frames" / "p002_b1.png", std::ios::app) << "tampered";
+  const Result tampered = Brdfrig("session verify " + Q(rig.sessions / "s"));
+  EXPECT_EQ(tampered.status, 1) << tampered.output;
+  EXPECT_NE(tampered.output.find("changed: frames/p002_b1.png"), std::string::npos)
+      << tampered.output;
+}
+
+TEST(AcquireCliTest, CtrlCAbortsACaptureCleanlyAndResumeFinishesIt) {
+  const auto rig = testing::MakeTestRig("cli_ctrl_c");
+  std::string scene = testing::SmallSceneYaml();
+  scene.replace(scene.find("reopen_s: 2"), 11, "reopen_s: 2\n  real_time_factor: 0.1");
+  std::ofstream(rig.dir / "scene.yaml") << scene;
+  const fs::path session = rig.sessions / "s";
+  const pid_t pid = Spawn({"capture", "--rig", rig.rig_file.string(), "--plan",
+                           rig.plan_file.string(), "-o", session.string()},
+                          rig.dir / "capture.log");
+  // Ctrl-C once the first frame is recorded (the run has more than a second to go then).
+  for (int i = 0; i < 1000 && !fs::exists(session / "frames" / "p000_b0.png"); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  kill(pid, SIGINT);
+  EXPECT_EQ(Wait(pid), 1);
+  const SessionContents aborted = ReadSession(session);
+  EXPECT_EQ(aborted.exit_status, "aborted");
+  EXPECT_EQ(aborted.stop_reason, "interrupted (Ctrl-C)");
+  EXPECT_FALSE(aborted.Complete());
+
+  const Result resumed =
+      Brdfrig("capture --rig " + Q(rig.rig_file) + " -o " + Q(session) + " --resume");
+  EXPECT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_TRUE(ReadSession(session).Complete());
+}
+
+TEST(AcquireCliTest, DaemonAndItsClientCommands) {
+  const auto rig = testing::MakeTestRig("cli_daemon");
+  char socket_dir[] = "/tmp/brdfrig-cli-XXXXXX";  // sun_path holds 107 bytes
+  ASSERT_NE(mkdtemp(socket_dir), nullptr);
+  const fs::path socket = fs::path(socket_dir) / "d.sock";
+  std::ofstream(rig.dir / "daemon.yaml")
+      << "data_dir: data\nrig: rig.yaml\nsocket: " << socket.string() << "\n";
+  const pid_t daemon =
+      Spawn({"daemon", "--config", (rig.dir / "daemon.yaml").string()}, rig.dir / "daemon.log");
+  for (int i = 0; i < 200 && !fs::exists(socket); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const std::string at = " --socket " + Q(socket);
+
+  const Result submitted = Brdfrig("submit" + at + " --name d1 --follow " + Q(rig.plan_file));
+  EXPECT_EQ(submitted.status, 0) << submitted.output;
+  EXPECT_NE(submitted.output.find("session d1: success"), std::string::npos) << submitted.output;
+  const Result status = Brdfrig("status" + at);
+  EXPECT_EQ(status.status, 0) << status.output;
+  EXPECT_NE(status.output.find("daemon idle"), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find("d1"), std::string::npos) << status.output;
+  const Result pause = Brdfrig("pause" + at);
+  EXPECT_EQ(pause.status, 1);
+  EXPECT_NE(pause.output.find("no session is running"), std::string::npos) << pause.output;
+  const Result traversal = Brdfrig("submit" + at + " --name ../x " + Q(rig.plan_file));
+  EXPECT_EQ(traversal.status, 1);
+  EXPECT_NE(traversal.output.find("invalid session name"), std::string::npos) << traversal.output;
+
+  kill(daemon, SIGTERM);
+  EXPECT_EQ(Wait(daemon), 0);
+  EXPECT_FALSE(fs::exists(socket));
+  EXPECT_EQ(ReadSession(rig.dir / "data" / "d1").exit_status, "success");
+  fs::remove_all(socket_dir);
+}
+
+}  // namespace
+}  // namespace brdfrig::acquire
