@@ -2,16 +2,13 @@
 
 #include <chrono>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 
 #include "acquire/capture.h"
-#include "brdf/metrics.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "evaluate/display_image.h"
 #include "evaluate/held_out.h"
+#include "evaluate/material_report.h"
 #include "evaluate/report.h"
-#include "evaluate/svg_plot.h"
 #include "reconstruct/batch.h"
 #include "sim/devices.h"
 #include "sim/scene.h"
@@ -126,7 +123,6 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
 
   // 4. BRDF-space error and energy.
   say("[4/4] BRDF error and report");
-  const double log_cosine = brdf::LogCosineError(*scene.sample.brdf, fitted);
 
   Report report;
   report.title = "brdfrig demo: " + scene.Summary();
@@ -183,54 +179,8 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   for (const auto& w : result.warnings) recon.paragraphs.push_back("warning: " + w);
   report.sections.push_back(recon);
 
-  ReportSection held{"Held-out views", {}, {}, {}, {}};
-  held.paragraphs.push_back(
-      "PSNR two ways. Whole photo: every pixel (paper and table included) in the capture's code "
-      "values, peak = full scale, as the seed compared a real photo with a synthesized one. "
-      "Sample only: the pixels inside the cut-out, same units: the honest figure for the "
-      "material.");
-  Table psnr{"Held-out PSNR (dB) at elevation " + Fixed(options.view_elevation_deg, 0) + "°",
-             {"phi (deg)", "whole photo", "sample only"},
-             {}};
-  Series whole{"whole photo", {}, {}, true}, sample{"sample only", {}, {}, true};
-  for (const HeldOutResult& v : views) {
-    const double phi = v.view.phi / kDeg;
-    psnr.rows.push_back(
-        {Fixed(phi, 0), Fixed(v.whole_photo.psnr_db, 2), Fixed(v.sample_only.psnr_db, 2)});
-    whole.x.push_back(phi);
-    whole.y.push_back(v.whole_photo.psnr_db);
-    sample.x.push_back(phi);
-    sample.y.push_back(v.sample_only.psnr_db);
-    const std::string stem = "views/phi" + std::to_string(static_cast<int>(std::lround(phi)));
-    const double scale = AutoDisplayScale(v.photo);
-    cv::imwrite((out / (stem + "_photo.png")).string(), ToDisplay8(v.photo, scale));
-    cv::imwrite((out / (stem + "_render.png")).string(), ToDisplay8(v.rendering, scale));
-    cv::imwrite((out / (stem + "_diff.png")).string(),
-                ToDisplay8(DifferenceImage(v.photo, v.rendering), scale));
-    held.images.push_back({stem + "_photo.png", "phi " + Fixed(phi, 0) + "°: held-out photo"});
-    held.images.push_back({stem + "_render.png", "rendering of the fitted model"});
-    held.images.push_back({stem + "_diff.png", "|difference| (same scale)"});
-  }
-  held.tables.push_back(psnr);
-  held.svg_plots.push_back(SvgLinePlot({whole, sample}, {"Held-out PSNR against orientation phi",
-                                                         "phi (degrees)", "PSNR (dB)", 640, 400}));
-  report.sections.push_back(held);
-
-  ReportSection brdf_section{"BRDF against the truth", {}, {}, {}, {}};
-  brdf_section.paragraphs.push_back(
-      "Log-cosine error (brdf::LogCosineError) of the fit against the "
-      "simulated sample's BRDF: " +
-      Fixed(log_cosine, 4));
-  Table albedo{"Directional albedo (energy check; <= 1 conserves energy), green channel",
-               {"theta_in (deg)", "truth", "fitted"},
-               {}};
-  for (double t : {15.0, 30.0, 45.0, 60.0}) {
-    albedo.rows.push_back({Fixed(t, 0),
-                           Fixed(brdf::DirectionalAlbedo(*scene.sample.brdf, t * kDeg)[1], 4),
-                           Fixed(brdf::DirectionalAlbedo(fitted, t * kDeg)[1], 4)});
-  }
-  brdf_section.tables.push_back(albedo);
-  report.sections.push_back(brdf_section);
+  report.sections.push_back(HeldOutSection(views, options.view_elevation_deg, out));
+  report.sections.push_back(BrdfSection(*scene.sample.brdf, fitted));
 
   report.WriteHtml(out);
   DemoSummary summary;

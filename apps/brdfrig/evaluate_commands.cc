@@ -2,8 +2,11 @@
 
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "evaluate/demo.h"
+#include "evaluate/evaluate_job.h"
 
 namespace brdfrig::apps {
 namespace {
@@ -12,6 +15,15 @@ struct DemoArgs {
   std::string scene;
   std::string output = "demo-out";
 };
+
+struct EvaluateArgs {
+  std::string material, scene, output = "evaluate-out";
+  double elevation_deg = 40;
+  std::vector<double> phis_deg = {0, 20, 45, 90, 135, 180};
+  bool linear = false;
+};
+
+void Progress(const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); }
 
 }  // namespace
 
@@ -25,8 +37,31 @@ void RegisterEvaluateCommands(CLI::App& app) {
     evaluate::DemoOptions options;
     options.scene = args->scene;
     options.output_dir = args->output;
-    options.progress = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+    options.progress = Progress;
     const evaluate::DemoSummary summary = evaluate::RunDemo(options);
+    std::printf("%s\nreport: %s\n", summary.text.c_str(), summary.report_html.string().c_str());
+  });
+
+  auto eval = std::make_shared<EvaluateArgs>();
+  CLI::App* ev = app.add_subcommand(
+      "evaluate", "Judge a material against a simulated scene's truth: held-out views, BRDF error");
+  ev->add_option("material", eval->material, "material.json to evaluate")->required();
+  ev->add_option("--scene", eval->scene, "Scene whose sample is the truth")->required();
+  ev->add_option("-o,--output", eval->output, "Report directory");
+  ev->add_option("--elevation", eval->elevation_deg, "Camera and light elevation (degrees)");
+  ev->add_option("--phi", eval->phis_deg, "Light azimuths of the held-out views (degrees)")
+      ->delimiter(',');
+  ev->add_flag("--linear", eval->linear, "Render with the seed's linear interpolation");
+  ev->callback([eval] {
+    evaluate::EvaluateOptions options;
+    options.material = eval->material;
+    options.scene = eval->scene;
+    options.output_dir = eval->output;
+    options.view_elevation_deg = eval->elevation_deg;
+    options.view_phis_deg = eval->phis_deg;
+    options.linear_interpolation = eval->linear;
+    options.progress = Progress;
+    const evaluate::EvaluateSummary summary = evaluate::RunEvaluate(options);
     std::printf("%s\nreport: %s\n", summary.text.c_str(), summary.report_html.string().c_str());
   });
 }
