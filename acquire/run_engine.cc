@@ -501,9 +501,17 @@ RunSummary RunEngine::Run(bool resumed) {
   timing_.wall_s = Since(wall_start);
   summary_.timing = timing_;
   writer_.reset();
-  store_.LogEvent(summary_.status == ExitStatus::kSuccess ? "info" : "error", -1,
-                  "run stopped: " + summary_.ToString());
-  store_.Stop(summary_.status, summary_.reason);
+  try {
+    store_.LogEvent(summary_.status == ExitStatus::kSuccess ? "info" : "error", -1,
+                    "run stopped: " + summary_.ToString());
+    store_.Stop(summary_.status, summary_.reason);
+  } catch (const std::exception& e) {
+    // The catalog itself cannot be written (disk full): the run then reads as interrupted,
+    // which resumes the same way; the caller still learns why it stopped.
+    summary_.status = ExitStatus::kFailed;
+    summary_.reason += std::string(summary_.reason.empty() ? "" : "; ") +
+                       "cannot write the stop record: " + e.what();
+  }
   SetState(RunState::kDone, std::string(ExitStatusName(summary_.status)) +
                                 (summary_.reason.empty() ? "" : ": " + summary_.reason));
   return summary_;
