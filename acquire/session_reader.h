@@ -42,8 +42,9 @@ struct SessionContents {
   // the exposures chosen by metering (empty for a position not captured yet).
   std::vector<std::vector<double>> planned_brackets;
   rig::RigDescription rig;  // from the snapshot in <dir>/rig/
-  // Recorded frames ordered by position, bracket, file. Only complete positions' frames and
-  // the frames of the position an interrupted run was working on are present.
+  // Recorded frames ordered by position, bracket, file. A session that is not Complete() may
+  // also hold frames of positions its last run left incomplete (a resume discards and redoes
+  // them); use only positions whose bracket is all there.
   std::vector<RecordedFrame> frames;
 
   bool Complete() const;  // every planned position has its bracket recorded
