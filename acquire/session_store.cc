@@ -56,28 +56,6 @@ CREATE TABLE events(
   throw Error(what + " '" + path.string() + "': " + std::strerror(err));
 }
 
-void WriteAndSync(const fs::path& path, std::span<const std::byte> bytes) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) ThrowSystem("cannot create", path, errno);
-  std::size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      ::unlink(path.c_str());
-      ThrowSystem("cannot write", path, err);
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    const int err = errno;
-    ::unlink(path.c_str());
-    ThrowSystem("cannot flush", path, err);
-  }
-}
-
 bool IsTemporary(const fs::path& file) {
   const std::string name = file.filename().string();
   return name.ends_with(".tmp") || name.find(".tmp-") != std::string::npos;
@@ -364,14 +342,9 @@ std::string SessionStore::WriteFrame(const FrameToRecord& frame, std::span<const
   const fs::path final_path = dir_ / rel;
   const fs::path tmp = final_path.parent_path() / ("." + final_path.filename().string() + ".tmp");
   test_hooks::BeforeFrameWrite();
-  WriteAndSync(tmp, bytes);
+  WriteFileAndSync(tmp, bytes);
   test_hooks::KillPoint(test_hooks::kWriting);
-  if (::rename(tmp.c_str(), final_path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    ThrowSystem("cannot rename into place", final_path, err);
-  }
-  SyncDirectory(final_path.parent_path());
+  RenameAndSync(tmp, final_path);
   test_hooks::KillPoint(test_hooks::kRecording);
   const std::string sha = Sha256Hex(bytes);
 

@@ -29,11 +29,9 @@ void SyncDirectory(const std::filesystem::path& dir) {
   if (rc != 0) ThrowSystem("cannot sync directory", target, err);
 }
 
-void WriteFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) ThrowSystem("cannot create", tmp, errno);
+void WriteFileAndSync(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) ThrowSystem("cannot create", path, errno);
   std::size_t written = 0;
   while (written < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
@@ -41,22 +39,32 @@ void WriteFileAtomically(const std::filesystem::path& path, std::span<const std:
       if (errno == EINTR) continue;
       const int err = errno;
       ::close(fd);
-      ::unlink(tmp.c_str());
+      ::unlink(path.c_str());
       ThrowSystem("cannot write", path, err);
     }
     written += static_cast<std::size_t>(n);
   }
   if (::fsync(fd) != 0 || ::close(fd) != 0) {
     const int err = errno;
-    ::unlink(tmp.c_str());
+    ::unlink(path.c_str());
     ThrowSystem("cannot flush", path, err);
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+}
+
+void RenameAndSync(const std::filesystem::path& from, const std::filesystem::path& to) {
+  if (::rename(from.c_str(), to.c_str()) != 0) {
     const int err = errno;
-    ::unlink(tmp.c_str());
-    ThrowSystem("cannot rename into place", path, err);
+    ::unlink(from.c_str());
+    ThrowSystem("cannot rename into place", to, err);
   }
-  SyncDirectory(path.parent_path());
+  SyncDirectory(to.parent_path());
+}
+
+void WriteFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+  std::filesystem::path tmp = path;
+  tmp += ".tmp-" + std::to_string(::getpid());
+  WriteFileAndSync(tmp, bytes);
+  RenameAndSync(tmp, path);
 }
 
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view text) {

@@ -15,6 +15,12 @@ namespace brdfrig {
 void WriteFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view text);
 
+// The two halves of WriteFileAtomically, for callers that act between them (e.g. record a
+// checkpoint): write `path` and fsync it (removed again on failure); rename `from` to `to` and
+// fsync the directory (`from` removed on failure).
+void WriteFileAndSync(const std::filesystem::path& path, std::span<const std::byte> bytes);
+void RenameAndSync(const std::filesystem::path& from, const std::filesystem::path& to);
+
 // Reads a whole file; throws FileError when it cannot.
 std::string ReadFileToString(const std::filesystem::path& path);
 
