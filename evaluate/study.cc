@@ -18,12 +18,29 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double kDeg = M_PI / 180;
 
-// The base scene with another resolution (same field of view: the focal length is in mm).
-std::string SceneWithResolution(const std::string& text, int width, int height) {
-  if (width == 0) return text;
-  return std::regex_replace(
-      text, std::regex("resolution: \\[[0-9]+, *[0-9]+\\]"),
-      "resolution: [" + std::to_string(width) + ", " + std::to_string(height) + "]");
+// The base scene with the study's replacements: resolution (same field of view: the focal
+// length is in mm), the sample's BRDF, the sensor format and the effects list.
+std::string StudyScene(std::string text, const StudySettings& s) {
+  const auto replace = [&](const std::string& pattern, const std::string& with) {
+    const std::regex re(pattern);
+    if (!std::regex_search(text, re)) {
+      throw OptionsError("study: the base scene has no line matching '" + pattern + "'");
+    }
+    text = std::regex_replace(text, re, with, std::regex_constants::format_first_only);
+  };
+  if (s.width != 0) {
+    replace("resolution: \\[[0-9]+, *[0-9]+\\]",
+            "resolution: [" + std::to_string(s.width) + ", " + std::to_string(s.height) + "]");
+  }
+  if (!s.sample_brdf.empty()) replace("brdf: \\{[^\n]*\\}", "brdf: " + s.sample_brdf);
+  if (!s.sensor_format.empty()) replace("format: [a-z0-9]+", "format: " + s.sensor_format);
+  if (!s.effects.empty()) {
+    // The effects list is the scene's last section.
+    const auto at = text.find("\neffects:");
+    if (at == std::string::npos) throw OptionsError("study: the base scene has no effects list");
+    text = text.substr(0, at) + "\neffects: " + s.effects + "\n";
+  }
+  return text;
 }
 
 }  // namespace
@@ -39,7 +56,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     throw FileError(base.string(), "the study copies the scene: name its files by absolute path");
   }
   const fs::path scene_file = s.work_dir / "scene.yaml";
-  WriteFileAtomically(scene_file, SceneWithResolution(text, s.width, s.height));
+  WriteFileAtomically(scene_file, StudyScene(text, s));
   StudyResult result;
   try {
     sim::SimulateOptions simulate;

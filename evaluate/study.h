@@ -16,7 +16,11 @@ struct StudySettings {
   std::vector<double> position_degrees;  // symmetric arms: camera_arm = θ, light_arm = −θ
   std::vector<double> exposures;         // empty: the scene's
   int width = 0, height = 0;             // 0: the scene's resolution
-  double bin_width_deg = 0.02;           // sample binning (0 = every pixel)
+  // Replacements for the base scene's lines (YAML flow text; empty: keep the scene's):
+  std::string sample_brdf;      // e.g. "{model: ward, alpha: 0.15, specular: 0.3, diffuse: 0.1}"
+  std::string sensor_format;    // png16 | jpeg8 | tiff16
+  std::string effects;          // e.g. "[{type: shot_noise, full_well: 30000}]"
+  double bin_width_deg = 0.02;  // sample binning (0 = every pixel)
   int fit_iterations = 200;
   bool linear_interpolation = false;  // render with the seed's linear interpolation
   double view_elevation_deg = 40;
