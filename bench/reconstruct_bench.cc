@@ -118,7 +118,8 @@ void MergeComparison(int width, int height, int repeats) {
     std::vector<double> ours_runs, opencv_runs;
     for (int run = 0; run < repeats; ++run) {
       start = Clock::now();
-      ours = reconstruct::MergeBracket(images, exposures, response);
+      // Both merges write into their output of the previous repeat (OpenCV's dst is reused too).
+      reconstruct::MergeBracketInto(images, exposures, response, &ours);
       ours_runs.push_back(Seconds(start));
       start = Clock::now();
       cv::createMergeDebevec()->process(opencv_inputs, opencv_hdr, times, opencv_response);

@@ -58,7 +58,6 @@ template <typename T>
 void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
                const std::vector<std::size_t>& order, const CodeTable& table,
                const HdrMergeOptions& options, HdrImage* out, std::vector<long>* invalid_per_row) {
-  using Pixel = cv::Vec<T, 3>;
   const Decode<T> decode{table};
   const auto saturation = static_cast<float>(options.saturation);
   const auto black = static_cast<float>(options.black);
@@ -102,56 +101,68 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
       table16[static_cast<std::size_t>(code)] = {s / (s + floor), 1.0f / (s + floor)};
     }
   }
+  // Per row, two passes. The first runs over the row's values as one flat array (x and
+  // channel together) with no branch, so the compiler vectorizes it; a value no exposure could
+  // measure gets den = 0 and is marked -1. The second, scalar pass handles only those (rare)
+  // values and the validity mask.
   ParallelFor(
       static_cast<std::size_t>(out->radiance.rows),
       [&](std::size_t begin, std::size_t end) {
-        std::vector<const Pixel*> rows(n);
+        std::vector<const T*> rows(n);
+        const int values = 3 * width;
         for (std::size_t y = begin; y < end; ++y) {
           const int row = static_cast<int>(y);
-          for (std::size_t i = 0; i < n; ++i) rows[i] = images[order[i]].ptr<Pixel>(row);
-          auto* dst = out->radiance.ptr<cv::Vec3f>(row);
+          for (std::size_t i = 0; i < n; ++i) rows[i] = images[order[i]].ptr<T>(row);
+          float* dst = out->radiance.ptr<float>(row);
+          if constexpr (std::is_same_v<T, uchar>) {
+            // Table lookups do not vectorize; walk pixels so the channel is a constant.
+            for (int x = 0; x < width; ++x) {
+              for (int c = 0; c < 3; ++c) {
+                const int j = 3 * x + c;
+                float num = 0, den = 0;
+                for (std::size_t i = 0; i < n; ++i) {
+                  const Terms& t = table8[(i * 3 + static_cast<std::size_t>(c)) * 256 + rows[i][j]];
+                  num += t.num;
+                  den += t.den;
+                }
+                dst[j] = den > 0 ? num / den : -1.0f;
+              }
+            }
+          } else {
+            for (int j = 0; j < values; ++j) {
+              float num = 0, den = 0;
+              for (std::size_t i = 0; i < n; ++i) {
+                if constexpr (std::is_same_v<T, ushort>) {
+                  const Terms& t = table16[rows[i][j]];
+                  num += times[i] * t.num;
+                  den += times_squared[i] * t.den;
+                } else {
+                  // Float (EXR): NaN/Inf fail both comparisons and drop out.
+                  const float s = rows[i][j];
+                  const bool usable = s < saturation && s > black;
+                  const float w = usable ? times_squared[i] / (s + floor) : 0.0f;
+                  num += w * (usable ? s : 0.0f) * inverse_times[i];
+                  den += w;
+                }
+              }
+              dst[j] = den > 0 ? num / den : -1.0f;
+            }
+          }
           auto* ok = out->valid.ptr<uchar>(row);
           long invalid = 0;
           for (int x = 0; x < width; ++x) {
             bool clipped_everywhere = false;
             for (int c = 0; c < 3; ++c) {
-              float num = 0, den = 0;
-              if constexpr (std::is_same_v<T, uchar>) {
-                for (std::size_t i = 0; i < n; ++i) {
-                  const Terms& t =
-                      table8[(i * 3 + static_cast<std::size_t>(c)) * 256 + rows[i][x][c]];
-                  num += t.num;
-                  den += t.den;
-                }
-              } else if constexpr (std::is_same_v<T, ushort>) {
-                for (std::size_t i = 0; i < n; ++i) {
-                  const Terms& t = table16[rows[i][x][c]];
-                  num += times[i] * t.num;
-                  den += times_squared[i] * t.den;
-                }
-              } else {
-                for (std::size_t i = 0; i < n; ++i) {
-                  const T code = rows[i][x][c];
-                  const float s = decode.Value(code, c);
-                  if (!(s < saturation) || s <= black) continue;
-                  const float w = decode.Weight(code) * times_squared[i] / (s + floor);
-                  num += w * s * inverse_times[i];
-                  den += w;
-                }
-              }
-              if (den > 0) {
-                dst[x][c] = num / den;
-                continue;
-              }
-              const float shortest = decode.Value(rows[0][x][c], c);
-              if (shortest >= saturation || !std::isfinite(static_cast<float>(rows[0][x][c]))) {
+              const int j = 3 * x + c;
+              if (dst[j] >= 0) continue;
+              const float shortest = decode.Value(rows[0][j], c);
+              if (shortest >= saturation || !std::isfinite(static_cast<float>(rows[0][j]))) {
                 // Clipped (or not a number) in every exposure: keep a lower bound, flag it.
                 clipped_everywhere = true;
-                dst[x][c] = std::max(shortest, 0.0f) * inverse_times[0];
+                dst[j] = std::max(shortest, 0.0f) * inverse_times[0];
               } else {
                 // Black in every exposure: as dark as the longest exposure can tell.
-                dst[x][c] =
-                    std::max(decode.Value(rows[n - 1][x][c], c), 0.0f) * inverse_times[n - 1];
+                dst[j] = std::max(decode.Value(rows[n - 1][j], c), 0.0f) * inverse_times[n - 1];
               }
             }
             ok[x] = clipped_everywhere ? 0 : 255;
@@ -204,7 +215,16 @@ cv::Mat RecoverResponse(const std::vector<cv::Mat>& images,
 
 HdrImage MergeBracket(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
                       const cv::Mat& response, const HdrMergeOptions& options) {
+  HdrImage out;
+  MergeBracketInto(images, exposures_s, response, &out, options);
+  return out;
+}
+
+void MergeBracketInto(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
+                      const cv::Mat& response, HdrImage* out_image,
+                      const HdrMergeOptions& options) {
   options.Validate();
+  HdrImage& out = *out_image;
   if (images.empty() || images.size() != exposures_s.size()) {
     throw Error("HDR merge: need one exposure time per image");
   }
@@ -231,8 +251,7 @@ HdrImage MergeBracket(const std::vector<cv::Mat>& images, const std::vector<doub
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](auto a, auto b) { return exposures_s[a] < exposures_s[b]; });
-  HdrImage out;
-  out.radiance.create(size, CV_32FC3);
+  out.radiance.create(size, CV_32FC3);  // reuses the buffers when the size is unchanged
   out.valid.create(size, CV_8UC1);
   std::vector<long> invalid_per_row(static_cast<std::size_t>(size.height), 0);
   switch (depth) {
@@ -249,7 +268,6 @@ HdrImage MergeBracket(const std::vector<cv::Mat>& images, const std::vector<doub
   }
   const long invalid = std::accumulate(invalid_per_row.begin(), invalid_per_row.end(), 0L);
   out.invalid_fraction = static_cast<double>(invalid) / (static_cast<double>(size.area()));
-  return out;
 }
 
 }  // namespace brdfrig::reconstruct

@@ -37,6 +37,11 @@ struct HdrImage {
 HdrImage MergeBracket(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
                       const cv::Mat& response, const HdrMergeOptions& options = {});
 
+// The same merge into `out`, reusing its buffers when they already have the right size: the
+// output is ~13 bytes per pixel, and faulting in fresh pages for it costs as much as the merge.
+void MergeBracketInto(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
+                      const cv::Mat& response, HdrImage* out, const HdrMergeOptions& options = {});
+
 // Debevec–Malik response recovery from one or more 8-bit brackets (OpenCV CalibrateDebevec),
 // normalized so that code 255 maps to about 1.
 cv::Mat RecoverResponse(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s);

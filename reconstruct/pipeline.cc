@@ -135,6 +135,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
 
   cv::Mat response;  // recovered once per capture for non-linear (8-bit) photos
   std::vector<PositionData> measured;
+  HdrImage hdr;  // one buffer for every position's merge (each position is done with it)
   for (const CapturePosition* position : positions) {
     PositionData data;
     PositionReport& report = data.report;
@@ -147,13 +148,12 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
         StageTimer timer(&seconds, "load");
         bracket = LoadBracket(*position, nominal.intrinsics);
       }
-      HdrImage hdr;
       {
         StageTimer timer(&seconds, "hdr");
         if (bracket.images[0].depth() == CV_8U && response.empty()) {
           response = RecoverResponse(bracket.images, bracket.exposures);
         }
-        hdr = MergeBracket(bracket.images, bracket.exposures, response, options.hdr);
+        MergeBracketInto(bracket.images, bracket.exposures, response, &hdr, options.hdr);
       }
       report.invalid_fraction = hdr.invalid_fraction;
       if (!options.hdr_dir.empty()) {
