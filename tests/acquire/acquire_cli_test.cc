@@ -16,27 +16,16 @@
 
 #include "acquire/session_reader.h"
 #include "tests/acquire/test_rig.h"
+#include "tests/common/run_brdfrig.h"
 
 namespace brdfrig::acquire {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
+using Result = brdfrig::testing::CommandResult;
 
-Result Brdfrig(const std::string& arguments) {
-  Result result;
-  const std::string command = std::string(BRDFRIG_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 512> buffer;
-  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+Result Brdfrig(const std::string& arguments) { return brdfrig::testing::RunBrdfrig(arguments); }
 
 pid_t Spawn(const std::vector<std::string>& arguments, const fs::path& log) {
   const pid_t pid = fork();

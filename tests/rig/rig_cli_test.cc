@@ -15,25 +15,14 @@
 #include <thread>
 #include <vector>
 
+#include "tests/common/run_brdfrig.h"
 #include "tests/sim/test_scene.h"
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
+using Result = brdfrig::testing::CommandResult;
 
-Result Brdfrig(const std::string& arguments) {
-  Result result;
-  const std::string command = std::string(BRDFRIG_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 512> buffer;
-  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+Result Brdfrig(const std::string& arguments) { return brdfrig::testing::RunBrdfrig(arguments); }
 
 // `brdfrig rig simdrive --tcp 0` in the background; its first line names the port.
 class SimDrive {
