@@ -40,6 +40,14 @@ std::vector<fs::path> ExpandInputs(const std::vector<fs::path>& inputs) {
   return captures;
 }
 
+// Whether `path` is `root` or below it, compared component by component after resolving
+// links and "..", so "session2" is not inside "session".
+bool IsInside(const fs::path& path, const fs::path& root) {
+  const fs::path p = fs::weakly_canonical(path), r = fs::weakly_canonical(root);
+  auto [r_end, p_end] = std::mismatch(r.begin(), r.end(), p.begin(), p.end());
+  return r_end == r.end() || (std::next(r_end) == r.end() && r_end->empty());
+}
+
 std::string ExistingFingerprint(const fs::path& material_file) {
   if (!fs::exists(material_file)) return {};
   try {
@@ -116,9 +124,8 @@ std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
           item.message = "up to date";
         } else {
           const fs::path out_dir = item.material_file.parent_path();
-          if (fs::weakly_canonical(out_dir).string().rfind(
-                  fs::weakly_canonical(item.input).string(), 0) == 0) {
-            throw Error("the output " + out_dir.string() +
+          if (IsInside(out_dir, item.input)) {
+            throw Error("the output " + item.material_file.string() +
                         " lies inside the capture: a capture's recorded data is never written to");
           }
           ReconstructOptions reconstruct = options.reconstruct;
