@@ -19,34 +19,38 @@ namespace brdfrig::reconstruct {
 
 namespace {
 
-// Per code value: the linear value per channel and a weight on the code (a hat for non-linear
-// 8-bit codes, whose ends carry little information; flat for linear codes).
+// 8-bit codes: the linear value per channel (the recovered response) and a hat weight on the
+// code, whose ends carry little information.
 struct CodeTable {
   std::vector<std::array<float, 3>> value;
   std::vector<float> weight;
   CodeTable() = default;
-  CodeTable(int codes, const cv::Mat& response) : value(codes), weight(codes, 1.0f) {
-    for (int i = 0; i < codes; ++i) {
-      for (int c = 0; c < 3; ++c) {
-        value[i][c] = response.empty() ? static_cast<float>(i / double(codes - 1))
-                                       : response.at<cv::Vec3f>(i, 0)[c];
-      }
-      if (!response.empty()) {
-        weight[i] = static_cast<float>(std::min(i, codes - 1 - i) + 1) / (codes / 2.0f);
-      }
+  explicit CodeTable(const cv::Mat& response) : value(256), weight(256) {
+    for (int i = 0; i < 256; ++i) {
+      for (int c = 0; c < 3; ++c) value[i][c] = response.at<cv::Vec3f>(i, 0)[c];
+      weight[i] = static_cast<float>(std::min(i, 255 - i) + 1) / 128.0f;
     }
   }
 };
 
+// A code's linear value (1 = full scale) and its weight, per input type.
 template <typename T>
-struct Decode {
+struct Decode;
+template <>
+struct Decode<uchar> {
   const CodeTable& table;
-  float Value(T code, int c) const { return table.value[code][c]; }
-  float Weight(T code) const { return table.weight[code]; }
+  float Value(uchar code, int c) const { return table.value[code][c]; }
+  float Weight(uchar code) const { return table.weight[code]; }
+};
+template <>
+struct Decode<ushort> {
+  const CodeTable& table;  // unused: 16-bit codes are linear
+  float Value(ushort code, int) const { return code * (1.0f / 65535.0f); }
+  float Weight(ushort) const { return 1.0f; }
 };
 template <>
 struct Decode<float> {
-  const CodeTable& table;
+  const CodeTable& table;  // unused
   // Float inputs (EXR) are linear already; NaN/Inf fall out through the range checks.
   float Value(float v, int) const { return std::isfinite(v) ? v : -1.0f; }
   float Weight(float) const { return 1.0f; }
@@ -256,12 +260,11 @@ void MergeBracketInto(const std::vector<cv::Mat>& images, const std::vector<doub
   std::vector<long> invalid_per_row(static_cast<std::size_t>(size.height), 0);
   switch (depth) {
     case CV_8U:
-      MergeRows<uchar>(images, exposures_s, order, CodeTable(256, response), options, &out,
+      MergeRows<uchar>(images, exposures_s, order, CodeTable(response), options, &out,
                        &invalid_per_row);
       break;
     case CV_16U:
-      MergeRows<ushort>(images, exposures_s, order, CodeTable(65536, {}), options, &out,
-                        &invalid_per_row);
+      MergeRows<ushort>(images, exposures_s, order, {}, options, &out, &invalid_per_row);
       break;
     default:
       MergeRows<float>(images, exposures_s, order, {}, options, &out, &invalid_per_row);
