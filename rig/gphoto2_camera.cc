@@ -116,14 +116,31 @@ std::string Gphoto2Camera::Where() const {
   return info_.model.empty() ? std::string("camera") : info_.model + " (" + info_.port + ")";
 }
 
-template <typename Call>
-int Gphoto2Camera::Run(const std::string& what, Call call) {
+void Gphoto2Camera::RequireOpen(const std::string& what) const {
   if (camera_ == nullptr) {
     throw CameraError(CameraError::Kind::kGone, 0,
                       what +
                           ": the camera is not open (a re-open failed); call Reopen() when it "
                           "is back");
   }
+}
+
+CameraWidget* Gphoto2Camera::ReadConfig() {
+  RequireOpen("reading the camera's settings");
+  CameraWidget* root = nullptr;
+  deadline_ = std::chrono::steady_clock::now() + options_.operation_timeout;
+  const int result = gp_camera_get_config(camera_, &root, context_);
+  deadline_ = std::chrono::steady_clock::time_point::max();
+  if (result < GP_OK) {
+    if (root != nullptr) gp_widget_free(root);
+    return nullptr;
+  }
+  return root;
+}
+
+template <typename Call>
+int Gphoto2Camera::Run(const std::string& what, Call call) {
+  RequireOpen(what);
   auto backoff = options_.busy_backoff;
   for (int attempt = 1;; ++attempt) {
     deadline_ = std::chrono::steady_clock::now() + options_.operation_timeout;
@@ -207,22 +224,24 @@ void Gphoto2Camera::Open() {
   }
   info_.model = model;
   info_.port = port;
+  // Anything failing after init (settings the body refuses, most often) must release the
+  // camera: a constructor that throws runs no destructor, and the USB claim would stay.
   try {
     Run("opening the camera", [&] { return gp_camera_init(camera_, context_); });
+    if (const auto serial = GetConfig({"serialnumber", "eosserialnumber"})) info_.serial = *serial;
+    if (const auto firmware = GetConfig({"deviceversion", "firmwareversion"})) {
+      info_.firmware = *firmware;
+    }
+    info_.shutter_speeds.clear();
+    for (const std::string& label : Choices(kShutterSpeed)) {
+      if (const auto s = ParseShutterSpeed(label)) info_.shutter_speeds.push_back(*s);
+    }
+    std::sort(info_.shutter_speeds.begin(), info_.shutter_speeds.end());
+    ApplySettings();
   } catch (...) {
     Close();
     throw;
   }
-  if (const auto serial = GetConfig({"serialnumber", "eosserialnumber"})) info_.serial = *serial;
-  if (const auto firmware = GetConfig({"deviceversion", "firmwareversion"})) {
-    info_.firmware = *firmware;
-  }
-  info_.shutter_speeds.clear();
-  for (const std::string& label : Choices(kShutterSpeed)) {
-    if (const auto s = ParseShutterSpeed(label)) info_.shutter_speeds.push_back(*s);
-  }
-  std::sort(info_.shutter_speeds.begin(), info_.shutter_speeds.end());
-  ApplySettings();
 }
 
 void Gphoto2Camera::Close() {
@@ -268,8 +287,8 @@ void Gphoto2Camera::ApplySettings() {
 }
 
 std::vector<std::string> Gphoto2Camera::Choices(const std::vector<std::string>& names) {
-  WidgetPtr config;
-  if (gp_camera_get_config(camera_, &config.root, context_) < GP_OK) return {};
+  WidgetPtr config{ReadConfig()};
+  if (config.root == nullptr) return {};
   for (const std::string& name : names) {
     CameraWidget* widget = nullptr;
     if (gp_widget_get_child_by_name(config.root, name.c_str(), &widget) < GP_OK) continue;
@@ -298,8 +317,8 @@ std::vector<std::pair<std::string, std::string>> Gphoto2Camera::CurrentSettings(
 }
 
 std::optional<std::string> Gphoto2Camera::GetConfig(const std::vector<std::string>& names) {
-  WidgetPtr config;
-  if (gp_camera_get_config(camera_, &config.root, context_) < GP_OK) return std::nullopt;
+  WidgetPtr config{ReadConfig()};
+  if (config.root == nullptr) return std::nullopt;
   for (const std::string& name : names) {
     CameraWidget* widget = nullptr;
     if (gp_widget_get_child_by_name(config.root, name.c_str(), &widget) < GP_OK) continue;
@@ -513,17 +532,23 @@ std::vector<Frame> Gphoto2Camera::Capture() {
     if (type == GP_EVENT_TIMEOUT) break;
   }
 
+  double iso = 0;
+  if (const auto label = GetConfig(kIso)) {
+    char* end = nullptr;
+    const double value = std::strtod(label->c_str(), &end);
+    if (end != label->c_str()) iso = value;
+  }
+  // Every file is in memory before any is deleted from the card: a failed second download
+  // (RAW+JPEG) must not cost the first file.
   std::vector<Frame> frames;
   for (const CameraFileRef& file : files) {
     Frame frame = Download(file);
     frame.exposure_duration_s = exposure_duration;
-    if (const auto iso = GetConfig(kIso)) {
-      char* end = nullptr;
-      const double value = std::strtod(iso->c_str(), &end);
-      if (end != iso->c_str()) frame.iso = value;
-    }
+    frame.iso = iso;
     frames.push_back(std::move(frame));
-    if (options_.delete_after_download) Delete(file);
+  }
+  if (options_.delete_after_download) {
+    for (const CameraFileRef& file : files) Delete(file);
   }
   return frames;
 }

@@ -20,6 +20,7 @@
 
 typedef struct _Camera Camera;
 typedef struct _GPContext GPContext;
+typedef struct _CameraWidget CameraWidget;
 
 namespace brdfrig::rig {
 
@@ -101,6 +102,11 @@ class Gphoto2Camera : public Camera {
   void Open();
   void Close();
   void ApplySettings();
+  // Throws kGone naming `what` when the camera is not open (a re-open failed).
+  void RequireOpen(const std::string& what) const;
+  // The whole settings tree, read under the watchdog; nullptr when the camera offers none.
+  // The caller frees it.
+  CameraWidget* ReadConfig();
   // Runs a libgphoto2 call under the watchdog, retrying busy answers; maps failures.
   template <typename Call>
   int Run(const std::string& what, Call call);

@@ -95,9 +95,4 @@ CameraError Gphoto2Error(int result, const std::string& what) {
                          std::to_string(result) + "): " + advice);
 }
 
-int CheckGphoto2(int result, const std::string& what) {
-  if (result < 0) throw Gphoto2Error(result, what);
-  return result;
-}
-
 }  // namespace brdfrig::rig

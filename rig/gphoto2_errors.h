@@ -13,7 +13,4 @@ CameraError::Kind Gphoto2ErrorKind(int result);
 // `what` is the operation, e.g. "capture on Nikon DSC D750 (usb:001,004)".
 CameraError Gphoto2Error(int result, const std::string& what);
 
-// Throws Gphoto2Error(result, what) when result < 0; returns result otherwise.
-int CheckGphoto2(int result, const std::string& what);
-
 }  // namespace brdfrig::rig
