@@ -72,8 +72,18 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
     }
   }
   RunEngine engine(rig, *store, plan, options.run, options.on_progress);
-  if (options.on_engine) options.on_engine(engine);
-  summary.run = engine.Run(summary.resumed);
+  if (!options.on_engine) {
+    summary.run = engine.Run(summary.resumed);
+    return summary;
+  }
+  options.on_engine(&engine);
+  try {
+    summary.run = engine.Run(summary.resumed);
+  } catch (...) {
+    options.on_engine(nullptr);
+    throw;
+  }
+  options.on_engine(nullptr);
   return summary;
 }
 

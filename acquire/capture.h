@@ -20,8 +20,9 @@ struct CaptureOptions {
   bool resume = false;
   RunOptions run;
   RunEngine::ProgressCallback on_progress;
-  // Called with the engine once it exists (e.g. to wire SIGINT to Abort); may be empty.
-  std::function<void(RunEngine&)> on_engine;
+  // Called with the engine once it exists (e.g. to wire SIGINT to Abort), and with nullptr
+  // before it is destroyed, whatever the run's end; may be empty.
+  std::function<void(RunEngine*)> on_engine;
   void Validate() const;
 };
 

@@ -77,7 +77,7 @@ void OnCompleted(void* /*cls*/, MHD_Connection* /*connection*/, void** con_cls,
 }  // namespace
 
 HttpServer::HttpServer(int listen_fd, Handler handler, std::string bearer_token)
-    : handler_(std::move(handler)), token_(std::move(bearer_token)), fd_(listen_fd) {
+    : handler_(std::move(handler)), token_(std::move(bearer_token)) {
   // One internal thread polls every connection: a client that connects and says nothing, or
   // goes away mid-request, only costs its own connection (and a timeout).
   daemon_ = MHD_start_daemon(
@@ -90,10 +90,9 @@ HttpServer::HttpServer(int listen_fd, Handler handler, std::string bearer_token)
   }
 }
 
-HttpServer::~HttpServer() {
-  MHD_stop_daemon(daemon_);
-  ::close(fd_);
-}
+// MHD_stop_daemon closes the listening socket too (also one given with
+// MHD_OPTION_LISTEN_SOCKET); closing it again could close a descriptor reused meanwhile.
+HttpServer::~HttpServer() { MHD_stop_daemon(daemon_); }
 
 HttpResponse HttpServer::Dispatch(const HttpRequest& request) const {
   if (!token_.empty() && !SameSecret(request.authorization, "Bearer " + token_)) {

@@ -42,7 +42,6 @@ class HttpServer {
   Handler handler_;
   std::string token_;
   MHD_Daemon* daemon_ = nullptr;
-  int fd_;
 };
 
 }  // namespace brdfrig::acquire

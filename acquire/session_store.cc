@@ -211,9 +211,9 @@ std::unique_ptr<SessionStore> SessionStore::Open(const fs::path& dir) {
     ::close(lock_fd);
     throw;
   }
-  db->Exec("PRAGMA synchronous=FULL");
   auto store = std::unique_ptr<SessionStore>(new SessionStore(dir, std::move(db)));
   store->lock_fd_ = lock_fd;  // released by the destructor, whatever happens below
+  store->db_->Exec("PRAGMA synchronous=FULL");
   Statement check(*store->db_, "SELECT COUNT(*) FROM session");
   if (!check.Step() || check.Int(0) != 1) {
     throw Error("'" + dir.string() +

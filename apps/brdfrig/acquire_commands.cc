@@ -4,8 +4,10 @@
 
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <memory>
+#include <mutex>
 #include <thread>
 
 #include "acquire/capture.h"
@@ -24,7 +26,9 @@ struct CaptureArgs {
 };
 
 // Ctrl-C / SIGTERM abort the run cleanly (axes stopped, downloaded frames recorded, stop
-// record written) instead of killing it mid-write; a second Ctrl-C still kills.
+// record written) instead of killing it mid-write; a second one exits at once. The signals are
+// blocked in every thread and taken by one watcher thread, which only touches the engine while
+// RunCapture says it exists.
 class AbortOnSignal {
  public:
   AbortOnSignal() {
@@ -32,32 +36,39 @@ class AbortOnSignal {
     sigaddset(&set_, SIGINT);
     sigaddset(&set_, SIGTERM);
     pthread_sigmask(SIG_BLOCK, &set_, nullptr);  // before any thread exists: all inherit it
-  }
-  ~AbortOnSignal() {
-    done_ = true;
-    if (thread_.joinable()) thread_.join();
-    pthread_sigmask(SIG_UNBLOCK, &set_, nullptr);
-  }
-  void Watch(acquire::RunEngine& engine) {
-    thread_ = std::thread([this, &engine] {
+    thread_ = std::thread([this] {
       const timespec tick{0, 200'000'000};
+      bool aborting = false;
       while (!done_) {
         const int sig = sigtimedwait(&set_, nullptr, &tick);
-        if (sig > 0) {
-          std::fprintf(stderr, "\nbrdfrig: %s received, aborting the run\n",
-                       sig == SIGINT ? "SIGINT" : "SIGTERM");
-          engine.Abort(sig == SIGINT ? "interrupted (Ctrl-C)" : "terminated (SIGTERM)");
-          pthread_sigmask(SIG_UNBLOCK, &set_, nullptr);
-          signal(SIGINT, SIG_DFL);
-          return;
+        if (sig <= 0) continue;
+        if (aborting) std::_Exit(128 + sig);  // the second signal: the user insists
+        aborting = true;
+        std::fprintf(stderr, "\nbrdfrig: %s received, aborting the run (again to exit now)\n",
+                     sig == SIGINT ? "SIGINT" : "SIGTERM");
+        std::lock_guard lock(mutex_);
+        if (engine_ != nullptr) {
+          engine_->Abort(sig == SIGINT ? "interrupted (Ctrl-C)" : "terminated (SIGTERM)");
         }
       }
     });
+  }
+  ~AbortOnSignal() {
+    done_ = true;
+    thread_.join();
+    pthread_sigmask(SIG_UNBLOCK, &set_, nullptr);
+  }
+  // For CaptureOptions::on_engine: the engine while it exists, nullptr before it goes.
+  void SetEngine(acquire::RunEngine* engine) {
+    std::lock_guard lock(mutex_);
+    engine_ = engine;
   }
 
  private:
   sigset_t set_;
   std::atomic<bool> done_{false};
+  std::mutex mutex_;
+  acquire::RunEngine* engine_ = nullptr;
   std::thread thread_;
 };
 
@@ -103,7 +114,7 @@ void RegisterAcquireCommands(CLI::App& app) {
     ProgressLine line;
     options.on_progress = [&line](const acquire::RunProgress& p) { line.Show(p); };
     AbortOnSignal signals;
-    options.on_engine = [&signals](acquire::RunEngine& engine) { signals.Watch(engine); };
+    options.on_engine = [&signals](acquire::RunEngine* engine) { signals.SetEngine(engine); };
     const acquire::CaptureSummary summary = acquire::RunCapture(options);
     line.Finish();
     for (const std::string& w : summary.warnings) std::printf("warning: %s\n", w.c_str());

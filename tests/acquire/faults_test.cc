@@ -136,7 +136,8 @@ TEST(FaultsTest, ModbusTimeoutOnARealDriveClientIsRetried) {
                                      "speed_deg_s: 2000, accel_deg_s2: 40000, min_deg: -80, "
                                      "max_deg: 80, poll_ms: 2}\n";
   CaptureOptions options = Options(rig, "s");
-  options.on_engine = [&drive](RunEngine&) {
+  options.on_engine = [&drive](RunEngine* e) {
+    if (e == nullptr) return;
     sim::DriveFaults faults;
     faults.drop_responses = 3;  // the first move times out on both attempts of the link
     drive.InjectFaults(faults);
@@ -192,9 +193,9 @@ TEST(FaultsTest, PauseStopsAtASafePointResumeContinuesAbortEndsResumably) {
   CaptureOptions options = Options(rig, "s");
   RunEngine* engine = nullptr;
   bool paused_seen = false, aborted = false;
-  options.on_engine = [&](RunEngine& e) {
-    engine = &e;
-    e.Pause();  // pauses at the first safe point, before any move
+  options.on_engine = [&](RunEngine* e) {
+    engine = e;
+    if (e != nullptr) e->Pause();  // pauses at the first safe point, before any move
   };
   options.on_progress = [&](const RunProgress& p) {
     if (p.state == RunState::kPaused && !paused_seen) {

@@ -74,7 +74,7 @@ TEST(SessionCapture, AbortedSessionUsesItsCompletePositionsAndSaysSo) {
   SessionSetup s = MakeSession("aborted");
   // Abort once the second position has its first frame: position 0 complete, 1 partial.
   acquire::RunEngine* engine = nullptr;
-  s.capture.on_engine = [&](acquire::RunEngine& e) { engine = &e; };
+  s.capture.on_engine = [&](acquire::RunEngine* e) { engine = e; };
   s.capture.on_progress = [&](const acquire::RunProgress& p) {
     if (p.frames_recorded >= 4 && engine) engine->Abort("test stops the run");
   };
