@@ -44,7 +44,7 @@ class Daemon {
 
   int tcp_port() const { return tcp_port_; }
   const DaemonConfig& config() const { return config_; }
-  // Blocks until the queue is empty and nothing runs (for tests and `--exit-when-idle`).
+  // Blocks until the queue is empty and nothing runs (for tests).
   void WaitIdle();
 
   HttpResponse Handle(const HttpRequest& request);

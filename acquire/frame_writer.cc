@@ -52,10 +52,9 @@ bool FrameWriter::HasRejected() {
 std::set<int> FrameWriter::TakeRejectedPositions() {
   Drain();
   std::lock_guard lock(mutex_);
+  // A position taken for redo gets recorded again from scratch.
   std::set<int> rejected;
   rejected.swap(rejected_);
-  // A position taken for redo gets recorded again from scratch.
-  for (const int p : rejected) dropping_.erase(p);
   return rejected;
 }
 
@@ -90,7 +89,7 @@ void FrameWriter::Process(CapturedFrame& job) {
   const int position = job.record.position_index;
   {
     std::lock_guard lock(mutex_);
-    if (fatal_ || dropping_.count(position)) return;
+    if (fatal_ || rejected_.count(position)) return;
   }
   const auto start = std::chrono::steady_clock::now();
   RecordedInfo info;
@@ -124,7 +123,6 @@ void FrameWriter::Process(CapturedFrame& job) {
     if (fatal) fatal_ = fatal;
     if (rejected) {
       rejected_.insert(position);
-      dropping_.insert(position);
     }
   }
   if (!fatal && !rejected && on_recorded_) on_recorded_(info);

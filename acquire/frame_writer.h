@@ -73,8 +73,8 @@ class FrameWriter {
   bool busy_ = false;
   bool stopping_ = false;
   std::optional<std::string> fatal_;
-  std::set<int> rejected_;  // since the last TakeRejectedPositions
-  std::set<int> dropping_;  // positions whose remaining frames are skipped
+  // Positions rejected since the last TakeRejectedPositions: their remaining frames are skipped.
+  std::set<int> rejected_;
   double clock_s_ = 0;
   double host_s_ = 0;
   std::thread thread_;

@@ -134,12 +134,6 @@ void RunEngine::SetState(RunState state, const std::string& message) {
   Publish();
 }
 
-void RunEngine::Event(const std::string& level, int p, const std::string& message) {
-  store_.LogEvent(level, p, message);
-  std::lock_guard lock(mutex_);
-  progress_.message = message;
-}
-
 void RunEngine::StopAxes() {
   for (auto& [name, axis] : rig_.axes) {
     try {

@@ -123,7 +123,6 @@ class RunEngine {
   void StopAxes();
   void SetState(RunState state, const std::string& message = "");
   void Publish();
-  void Event(const std::string& level, int p, const std::string& message);
 
   rig::Rig& rig_;
   SessionStore& store_;

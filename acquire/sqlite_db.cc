@@ -70,14 +70,6 @@ Statement& Statement::Bind(int index, const std::string& value) {
   return *this;
 }
 
-Statement& Statement::BindBlob(int index, std::span<const std::byte> value) {
-  if (sqlite3_bind_blob64(stmt_, index, value.data(), value.size(), SQLITE_TRANSIENT) !=
-      SQLITE_OK) {
-    db_.Fail("bind");
-  }
-  return *this;
-}
-
 Statement& Statement::BindNull(int index) {
   if (sqlite3_bind_null(stmt_, index) != SQLITE_OK) db_.Fail("bind");
   return *this;
@@ -95,11 +87,6 @@ void Statement::Run() {
   }
 }
 
-void Statement::Reset() {
-  sqlite3_reset(stmt_);
-  sqlite3_clear_bindings(stmt_);
-}
-
 std::int64_t Statement::Int(int column) const { return sqlite3_column_int64(stmt_, column); }
 double Statement::Double(int column) const { return sqlite3_column_double(stmt_, column); }
 
@@ -107,12 +94,6 @@ std::string Statement::Text(int column) const {
   const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(stmt_, column));
   return text ? std::string(text, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, column)))
               : std::string();
-}
-
-std::vector<std::byte> Statement::Blob(int column) const {
-  const auto* data = static_cast<const std::byte*>(sqlite3_column_blob(stmt_, column));
-  const auto size = static_cast<std::size_t>(sqlite3_column_bytes(stmt_, column));
-  return data ? std::vector<std::byte>(data, data + size) : std::vector<std::byte>();
 }
 
 bool Statement::IsNull(int column) const {

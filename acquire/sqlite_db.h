@@ -37,19 +37,16 @@ class Statement {
   Statement& Bind(int index, double value);
   Statement& Bind(int index, const std::string& value);
   Statement& Bind(int index, const char* value) { return Bind(index, std::string(value)); }
-  Statement& BindBlob(int index, std::span<const std::byte> value);
   Statement& BindNull(int index);
 
   // Returns true when a row is available, false when done.
   bool Step();
   // Runs to completion (for statements without results).
   void Run();
-  void Reset();
 
   std::int64_t Int(int column) const;
   double Double(int column) const;
   std::string Text(int column) const;
-  std::vector<std::byte> Blob(int column) const;
   bool IsNull(int column) const;
 
  private:

@@ -16,4 +16,11 @@ inline std::string Fixed(double value, int decimals) {
   return buffer;
 }
 
+// A device code as people read it in manuals: 0x42.
+inline std::string Hex(int code) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof(buffer), "0x%02X", code);
+  return buffer;
+}
+
 }  // namespace brdfrig

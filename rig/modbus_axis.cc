@@ -6,6 +6,8 @@
 #include <map>
 #include <thread>
 
+#include "common/format.h"
+
 namespace brdfrig::rig {
 namespace {
 
@@ -20,12 +22,6 @@ std::string Degrees(double radians) {
 std::string Number(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%g", value);
-  return text;
-}
-
-std::string Hex(int code) {
-  char text[16];
-  std::snprintf(text, sizeof(text), "0x%02X", code);
   return text;
 }
 

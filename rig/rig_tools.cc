@@ -6,6 +6,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/format.h"
 #include "rig/backend_registry.h"
 #include "rig/gphoto2_camera.h"
 #include "rig/modbus_axis.h"
@@ -21,12 +22,6 @@ constexpr double kDegPerRad = 180.0 / M_PI;
 std::string Format(const char* format, double value) {
   char text[64];
   std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
-std::string Hex(int code) {
-  char text[16];
-  std::snprintf(text, sizeof(text), "0x%02X", code);
   return text;
 }
 
