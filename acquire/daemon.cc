@@ -309,7 +309,8 @@ HttpResponse Daemon::Submit(const std::string& body) {
   try {
     SessionStore::Create(config_.data_dir / name, plan, rig_.description);
   } catch (const Error& e) {
-    return Fail(409, e.what());
+    // The name was checked free above: this is the daemon's disk or rig files, not a conflict.
+    return Fail(500, std::string("cannot create the session: ") + e.what());
   }
   queue_.push_back({name});
   const int place = static_cast<int>(queue_.size()) + (running_.empty() ? 0 : 1);

@@ -134,51 +134,58 @@ std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, co
   const fs::path dir =
       parent / ("." + final_dir.filename().string() + ".tmp-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  fs::create_directory(dir);
-  fs::create_directory(dir / "frames");
-  WriteFileAtomically(dir / "plan.yaml", plan.text);
+  // A creation that fails half-way (disk full, an unreadable rig file) leaves nothing behind.
+  try {
+    fs::create_directory(dir);
+    fs::create_directory(dir / "frames");
+    WriteFileAtomically(dir / "plan.yaml", plan.text);
 
-  // The rig snapshot: every file needed to reprocess the session on its own.
-  const std::vector<SnapshotFile> snapshot = WriteRigSnapshot(dir, rig);
+    // The rig snapshot: every file needed to reprocess the session on its own.
+    const std::vector<SnapshotFile> snapshot = WriteRigSnapshot(dir, rig);
 
-  auto db = std::make_unique<SqliteDb>(dir / "session.sqlite", SqliteDb::Mode::kCreate);
-  db->Exec("PRAGMA journal_mode=WAL");
-  db->Exec("PRAGMA synchronous=FULL");
-  Transaction tx(*db);
-  db->Exec(kSchema);
-  Statement(*db, "INSERT INTO meta VALUES ('schema_version', ?1)")
-      .Bind(1, std::to_string(kSchemaVersion))
-      .Run();
-  nlohmann::json positions = nlohmann::json::array();
-  for (const PlannedPosition& p : plan.positions) positions.push_back(AxesJson(p.axes));
-  nlohmann::json exposures =
-      plan.auto_bracket ? nlohmann::json("auto") : nlohmann::json(plan.exposures_s);
-  Statement(*db,
-            "INSERT INTO session VALUES (1, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)")
-      .Bind(1, final_dir.filename().string())
-      .Bind(2, plan.sample)
-      .Bind(3, plan.operator_name)
-      .Bind(4, plan.notes)
-      .Bind(5, BRDFRIG_VERSION)
-      .Bind(6, UtcNow())
-      .Bind(7, plan.file)
-      .Bind(8, plan.text)
-      .Bind(9, rig.file.string())
-      .Bind(10, positions.dump())
-      .Bind(11, exposures.dump())
-      .Bind(12, plan.BracketSize())
-      .Run();
-  for (const SnapshotFile& f : snapshot) {
-    Statement(*db, "INSERT INTO snapshot_files VALUES (?1, ?2, ?3, ?4)")
-        .Bind(1, f.name)
-        .Bind(2, f.role)
-        .Bind(3, f.original.string())
-        .Bind(4, f.sha256)
+    auto db = std::make_unique<SqliteDb>(dir / "session.sqlite", SqliteDb::Mode::kCreate);
+    db->Exec("PRAGMA journal_mode=WAL");
+    db->Exec("PRAGMA synchronous=FULL");
+    Transaction tx(*db);
+    db->Exec(kSchema);
+    Statement(*db, "INSERT INTO meta VALUES ('schema_version', ?1)")
+        .Bind(1, std::to_string(kSchemaVersion))
         .Run();
+    nlohmann::json positions = nlohmann::json::array();
+    for (const PlannedPosition& p : plan.positions) positions.push_back(AxesJson(p.axes));
+    nlohmann::json exposures =
+        plan.auto_bracket ? nlohmann::json("auto") : nlohmann::json(plan.exposures_s);
+    Statement(*db,
+              "INSERT INTO session VALUES (1, ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)")
+        .Bind(1, final_dir.filename().string())
+        .Bind(2, plan.sample)
+        .Bind(3, plan.operator_name)
+        .Bind(4, plan.notes)
+        .Bind(5, BRDFRIG_VERSION)
+        .Bind(6, UtcNow())
+        .Bind(7, plan.file)
+        .Bind(8, plan.text)
+        .Bind(9, rig.file.string())
+        .Bind(10, positions.dump())
+        .Bind(11, exposures.dump())
+        .Bind(12, plan.BracketSize())
+        .Run();
+    for (const SnapshotFile& f : snapshot) {
+      Statement(*db, "INSERT INTO snapshot_files VALUES (?1, ?2, ?3, ?4)")
+          .Bind(1, f.name)
+          .Bind(2, f.role)
+          .Bind(3, f.original.string())
+          .Bind(4, f.sha256)
+          .Run();
+    }
+    tx.Commit();
+    db.reset();  // SQLite names its -wal and -shm files by path: close before the rename
+    SyncDirectory(dir);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+    throw;
   }
-  tx.Commit();
-  db.reset();  // SQLite names its -wal and -shm files by path: close before the rename
-  SyncDirectory(dir);
   // rename(2) refuses a non-empty target: a session that appeared meanwhile is kept.
   if (::rename(dir.c_str(), final_dir.c_str()) != 0) {
     const int err = errno;
