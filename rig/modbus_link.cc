@@ -226,7 +226,18 @@ std::shared_ptr<ModbusLink> SharedModbusLink(const ModbusLinkOptions& options) {
   static std::map<std::string, std::weak_ptr<ModbusLink>> links;
   std::lock_guard lock(mutex);
   std::weak_ptr<ModbusLink>& slot = links[options.Endpoint()];
-  if (auto link = slot.lock()) return link;
+  if (auto link = slot.lock()) {
+    // Devices on one bus share its timing: silently keeping the first device's would hide a
+    // setting the second one asks for.
+    const ModbusLinkOptions& used = link->options();
+    if (used.response_timeout != options.response_timeout || used.attempts != options.attempts ||
+        used.retry_backoff != options.retry_backoff) {
+      throw OptionsError("modbus: devices on " + options.Endpoint() +
+                         " share one link but ask for different timeout_ms/attempts: give "
+                         "them the same values");
+    }
+    return link;
+  }
   auto link = std::make_shared<ModbusLink>(options);
   slot = link;
   return link;
