@@ -151,7 +151,9 @@ void UsbWatcher::Run() {
           context_,
           static_cast<libusb_hotplug_event>(LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED |
                                             LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT),
-          static_cast<libusb_hotplug_flag>(0), LIBUSB_HOTPLUG_MATCH_ANY, LIBUSB_HOTPLUG_MATCH_ANY,
+          // ENUMERATE: a camera plugged in between the first scan and this registration is
+          // reported too (devices already known are ignored by OnHotplug).
+          LIBUSB_HOTPLUG_ENUMERATE, LIBUSB_HOTPLUG_MATCH_ANY, LIBUSB_HOTPLUG_MATCH_ANY,
           LIBUSB_HOTPLUG_MATCH_ANY, HotplugCallback, this, &handle) == LIBUSB_SUCCESS) {
     using_hotplug_ = true;
   }
