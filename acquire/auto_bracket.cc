@@ -7,10 +7,10 @@ namespace brdfrig::acquire {
 namespace {
 
 // Paper levels on a ring halfway between the cut-out and the paper's outer edge.
-std::vector<float> PaperSamples(const cv::Mat& levels, const rig::RigGeometry& g,
-                                const rig::AxisPositions& axes) {
+std::vector<float> PaperSamples(const cv::Mat& levels, const geometry::RigGeometry& g,
+                                const geometry::AxisPositions& axes) {
   std::vector<float> samples;
-  const rig::CameraPose pose = g.CameraAt(axes);
+  const geometry::CameraPose pose = g.CameraAt(axes);
   const double hx = 0.25 * (g.target.cutout_width + g.target.paper_width);
   const double hy = 0.25 * (g.target.cutout_height + g.target.paper_height);
   for (int i = 0; i < 32; ++i) {
@@ -19,7 +19,8 @@ std::vector<float> PaperSamples(const cv::Mat& levels, const rig::RigGeometry& g
     const double c = std::cos(t), s = std::sin(t);
     const double k = 1.0 / std::max(std::abs(c) / hx, std::abs(s) / hy);
     Eigen::Vector2d pixel;
-    if (!rig::ProjectToPixel(g.intrinsics, pose, rig::Vec3(k * c, k * s, 0), &pixel)) continue;
+    if (!geometry::ProjectToPixel(g.intrinsics, pose, geometry::Vec3(k * c, k * s, 0), &pixel))
+      continue;
     const int u = static_cast<int>(std::lround(pixel.x() * levels.cols / g.intrinsics.width));
     const int v = static_cast<int>(std::lround(pixel.y() * levels.rows / g.intrinsics.height));
     if (u < 0 || v < 0 || u >= levels.cols || v >= levels.rows) continue;
@@ -31,8 +32,8 @@ std::vector<float> PaperSamples(const cv::Mat& levels, const rig::RigGeometry& g
 }  // namespace
 
 MeteringResult ChooseBracket(const cv::Mat& levels, double metering_exposure_s,
-                             const rig::RigGeometry& geometry, const rig::AxisPositions& axes,
-                             const AutoBracket& settings) {
+                             const geometry::RigGeometry& geometry,
+                             const geometry::AxisPositions& axes, const AutoBracket& settings) {
   MeteringResult result;
   double max_level = 0;
   cv::minMaxLoc(levels, nullptr, &max_level);

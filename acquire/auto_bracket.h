@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "acquire/plan.h"
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 namespace brdfrig::acquire {
 
@@ -22,7 +22,7 @@ struct MeteringResult {
 
 // `levels`: the metering shot as fractions of full scale (FrameCheck's `levels`).
 MeteringResult ChooseBracket(const cv::Mat& levels, double metering_exposure_s,
-                             const rig::RigGeometry& geometry, const rig::AxisPositions& axes,
-                             const AutoBracket& settings);
+                             const geometry::RigGeometry& geometry,
+                             const geometry::AxisPositions& axes, const AutoBracket& settings);
 
 }  // namespace brdfrig::acquire

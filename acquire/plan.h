@@ -23,13 +23,13 @@
 #include <vector>
 
 #include "common/yaml_reader.h"
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 namespace brdfrig::acquire {
 
 struct PlannedPosition {
-  rig::AxisPositions axes;  // radians
-  int line = 0;             // where the position is written in the plan (1-based)
+  geometry::AxisPositions axes;  // radians
+  int line = 0;                  // where the position is written in the plan (1-based)
 };
 
 // Auto-bracketing: a metering shot at each position decides the bracket so that the highlight

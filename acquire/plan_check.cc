@@ -18,27 +18,30 @@ std::string Deg(double radians) {
   return text;
 }
 
-rig::Vec3 Reflect(const rig::Vec3& l, const rig::Vec3& n) { return 2 * n.dot(l) * n - l; }
+geometry::Vec3 Reflect(const geometry::Vec3& l, const geometry::Vec3& n) {
+  return 2 * n.dot(l) * n - l;
+}
 
 // Where the camera sees the light's mirror image in the plane z = 0, and what that means.
-void CheckHighlight(const rig::RigGeometry& g, const rig::AxisPositions& axes, PositionCheck* c) {
-  const rig::CameraPose pose = g.CameraAt(axes);
-  const rig::Vec3 camera = pose.CenterInWorld();
-  const rig::Vec3 light = g.LightAt(axes);
+void CheckHighlight(const geometry::RigGeometry& g, const geometry::AxisPositions& axes,
+                    PositionCheck* c) {
+  const geometry::CameraPose pose = g.CameraAt(axes);
+  const geometry::Vec3 camera = pose.CenterInWorld();
+  const geometry::Vec3 light = g.LightAt(axes);
   if (camera.z() <= 0 || light.z() <= 0) return;  // below the sample plane: no highlight
   // The mirror image of the light is below the plane; the ray to it crosses z = 0 at the
   // mirror point.
-  const rig::Vec3 mirrored(light.x(), light.y(), -light.z());
+  const geometry::Vec3 mirrored(light.x(), light.y(), -light.z());
   const double t = camera.z() / (camera.z() + light.z());
-  const rig::Vec3 p = camera + t * (mirrored - camera);
+  const geometry::Vec3 p = camera + t * (mirrored - camera);
   c->highlight_x = p.x();
   c->highlight_y = p.y();
-  const rig::Vec3 n = rig::Vec3::UnitZ();
+  const geometry::Vec3 n = geometry::Vec3::UnitZ();
   c->theta_in = std::acos(std::clamp((light - p).normalized().dot(n), -1.0, 1.0));
   const bool in_cutout =
       std::abs(p.x()) <= g.target.cutout_width / 2 && std::abs(p.y()) <= g.target.cutout_height / 2;
   Eigen::Vector2d pixel;
-  const bool projects = rig::ProjectToPixel(g.intrinsics, pose, p, &pixel) && pixel.x() >= 0 &&
+  const bool projects = geometry::ProjectToPixel(g.intrinsics, pose, p, &pixel) && pixel.x() >= 0 &&
                         pixel.y() >= 0 && pixel.x() < g.intrinsics.width &&
                         pixel.y() < g.intrinsics.height;
   if (projects) {
@@ -50,9 +53,9 @@ void CheckHighlight(const rig::RigGeometry& g, const rig::AxisPositions& axes, P
   // tells how far from the lobe peak this photo reaches (DESIGN.md, capture geometry).
   for (const double sx : {-0.5, 0.5}) {
     for (const double sy : {-0.5, 0.5}) {
-      const rig::Vec3 x(sx * g.target.cutout_width, sy * g.target.cutout_height, 0);
-      const rig::Vec3 v = (camera - x).normalized();
-      const rig::Vec3 r = Reflect((light - x).normalized(), n);
+      const geometry::Vec3 x(sx * g.target.cutout_width, sy * g.target.cutout_height, 0);
+      const geometry::Vec3 v = (camera - x).normalized();
+      const geometry::Vec3 r = Reflect((light - x).normalized(), n);
       c->theta_max = std::max(c->theta_max, std::acos(std::clamp(v.dot(r), -1.0, 1.0)));
     }
   }
@@ -70,9 +73,9 @@ double EstimateMoveS(double distance, const TimingAssumptions& timing) {
 PlanCheckReport CheckPlan(const Plan& plan, const rig::RigDescription& rig,
                           const TimingAssumptions& timing) {
   PlanCheckReport report;
-  const rig::RigGeometry& g = rig.geometry;
-  rig::AxisPositions previous;  // axes start where homing leaves them: 0
-  for (const rig::RotationAxis& axis : g.axes) previous[axis.name] = 0;
+  const geometry::RigGeometry& g = rig.geometry;
+  geometry::AxisPositions previous;  // axes start where homing leaves them: 0
+  for (const geometry::RotationAxis& axis : g.axes) previous[axis.name] = 0;
   const int shots = plan.BracketSize();
   for (std::size_t i = 0; i < plan.positions.size(); ++i) {
     const PlannedPosition& planned = plan.positions[i];
@@ -80,7 +83,7 @@ PlanCheckReport CheckPlan(const Plan& plan, const rig::RigDescription& rig,
     check.index = static_cast<int>(i);
     check.line = planned.line;
     for (const auto& [name, angle] : planned.axes) {
-      const rig::RotationAxis* axis = g.FindAxis(name);
+      const geometry::RotationAxis* axis = g.FindAxis(name);
       if (axis == nullptr) {
         report.errors.push_back(At(plan, planned.line) + "position " + std::to_string(i) +
                                 ": the rig (" + rig.file.string() + ") has no axis '" + name + "'");

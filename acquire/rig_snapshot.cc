@@ -87,7 +87,7 @@ rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
   const YamlNode root = LoadYamlFile(rig_file.string());
   const YamlNode geometry = root.Required("geometry");
   if (!geometry.IsScalar()) {
-    description.geometry = rig::ParseRigGeometry(geometry);
+    description.geometry = geometry::ParseRigGeometry(geometry);
     return description;
   }
   SqliteDb db(session_dir / "session.sqlite", SqliteDb::Mode::kReadOnly);
@@ -97,7 +97,7 @@ rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
     geometry.Fail("the session's rig snapshot lacks the geometry file");
   }
   description.geometry =
-      rig::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
+      geometry::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
   description.source_files.push_back(geometry_file);
   return description;
 }

@@ -201,7 +201,7 @@ void RunEngine::Fault(int p, const std::string& what, int attempt) {
   SetState(RunState::kFault, message);
 }
 
-void RunEngine::MoveAxesOnce(const rig::AxisPositions& axes) {
+void RunEngine::MoveAxesOnce(const geometry::AxisPositions& axes) {
   std::vector<std::pair<std::string, double>> targets(axes.begin(), axes.end());
   std::vector<rig::MoveReport> reports(targets.size());
   if (plan_.parallel_moves && targets.size() > 1) {

@@ -113,7 +113,7 @@ class RunEngine {
 
   void CapturePosition(int p);
   void MoveTo(int p);
-  void MoveAxesOnce(const rig::AxisPositions& axes);
+  void MoveAxesOnce(const geometry::AxisPositions& axes);
   std::vector<rig::Frame> Shoot(int p, double exposure_s, double* actual_s);
   std::vector<double> Meter(int p);
   void CheckControls();
@@ -143,7 +143,7 @@ class RunEngine {
   double clock_s_ = 0;
   RunTiming timing_;
   RunSummary summary_;
-  rig::AxisPositions readings_;           // last read-back of every axis
+  geometry::AxisPositions readings_;      // last read-back of every axis
   std::vector<double> position_model_s_;  // model time per completed position (for the ETA)
   double estimated_position_s_ = 0;       // the plan check's estimate, before any is done
   double remaining_ = 0;                  // positions left, the current one included

@@ -13,8 +13,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-rig::AxisPositions AxesFromJson(const std::string& text) {
-  rig::AxisPositions axes;
+geometry::AxisPositions AxesFromJson(const std::string& text) {
+  geometry::AxisPositions axes;
   const nlohmann::json j = nlohmann::json::parse(text);
   for (auto it = j.begin(); it != j.end(); ++it) axes[it.key()] = it.value().get<double>();
   return axes;

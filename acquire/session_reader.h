@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "acquire/rig_snapshot.h"  // ReadRigSnapshot
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 #include "rig/rig_file.h"
 
 namespace brdfrig::acquire {
@@ -16,14 +16,14 @@ namespace brdfrig::acquire {
 // One recorded file. A shot normally gives one file; a camera giving RAW + JPEG gives two
 // RecordedFrames with the same position and bracket index.
 struct RecordedFrame {
-  int position_index = 0;            // index into SessionContents::planned_positions
-  int bracket_index = 0;             // 0 = first shot of the position's bracket
-  rig::AxisPositions axis_readings;  // axis name -> radians, read back from the drives
-  double requested_exposure_s = 0;   // what the plan (or auto-bracketing) asked for
-  double exposure_s = 0;             // what the camera used
-  std::filesystem::path file;        // absolute path of the image file
-  std::string sha256;                // lowercase hex of the file's content when recorded
-  double saturated_fraction = 0;     // fraction of pixels at full scale (0 when not decoded)
+  int position_index = 0;                 // index into SessionContents::planned_positions
+  int bracket_index = 0;                  // 0 = first shot of the position's bracket
+  geometry::AxisPositions axis_readings;  // axis name -> radians, read back from the drives
+  double requested_exposure_s = 0;        // what the plan (or auto-bracketing) asked for
+  double exposure_s = 0;                  // what the camera used
+  std::filesystem::path file;             // absolute path of the image file
+  std::string sha256;                     // lowercase hex of the file's content when recorded
+  double saturated_fraction = 0;          // fraction of pixels at full scale (0 when not decoded)
 };
 
 struct SessionContents {
@@ -37,7 +37,7 @@ struct SessionContents {
   // run never stopped: killed, crashed, power cut) or "" (never started).
   std::string exit_status;
   std::string stop_reason;
-  std::vector<rig::AxisPositions> planned_positions;  // radians
+  std::vector<geometry::AxisPositions> planned_positions;  // radians
   // Requested exposures (s) per position: the plan's explicit bracket, or for auto-bracketing
   // the exposures chosen by metering (empty for a position not captured yet).
   std::vector<std::vector<double>> planned_brackets;

@@ -61,7 +61,7 @@ bool IsTemporary(const fs::path& file) {
   return name.ends_with(".tmp") || name.find(".tmp-") != std::string::npos;
 }
 
-nlohmann::json AxesJson(const rig::AxisPositions& axes) {
+nlohmann::json AxesJson(const geometry::AxisPositions& axes) {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& [name, angle] : axes) j[name] = angle;
   return j;

@@ -42,8 +42,8 @@ const char* ExitStatusName(ExitStatus status);  // "success", "aborted", "failed
 struct FrameToRecord {
   int position_index = 0;
   int bracket_index = 0;
-  int file_index = 0;                // a shot may give several files (RAW + JPEG)
-  rig::AxisPositions axis_readings;  // radians, read back from the drives
+  int file_index = 0;                     // a shot may give several files (RAW + JPEG)
+  geometry::AxisPositions axis_readings;  // radians, read back from the drives
   double requested_exposure_s = 0;
   double exposure_s = 0;
   std::string camera_file_name;  // the camera's name (for the extension and the record)

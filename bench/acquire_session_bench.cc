@@ -21,7 +21,7 @@ using namespace brdfrig;
 std::string PlanFromScene(const sim::Scene& scene) {
   std::ostringstream plan;
   plan << "sample: default-scene\noperator: bench\npositions:\n";
-  for (const rig::AxisPositions& p : scene.capture.positions) {
+  for (const geometry::AxisPositions& p : scene.capture.positions) {
     plan << "  - {";
     bool first = true;
     for (const auto& [axis, angle] : p) {
@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
                                   << "}\naxes:\n";
   {
     std::ofstream rig(dir / "rig.yaml", std::ios::app);
-    for (const rig::RotationAxis& axis : scene.rig.axes) {
+    for (const geometry::RotationAxis& axis : scene.rig.axes) {
       rig << "  " << axis.name << ": {backend: sim, scene: " << scene_file.string() << "}\n";
     }
   }

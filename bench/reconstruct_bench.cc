@@ -87,7 +87,7 @@ void MergeComparison(int width, int height, int repeats) {
     const sim::Simulator simulator(
         sim::LoadSceneString(SceneText(width, height, eight_bit ? "jpeg8" : "png16", effects),
                              "bench.yaml", std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes"));
-    const rig::AxisPositions at = {{"camera_arm", 0.6}, {"light_arm", -0.6}};
+    const geometry::AxisPositions at = {{"camera_arm", 0.6}, {"light_arm", -0.6}};
     const cv::Mat radiance = simulator.RenderRadiance(at);
     cv::Mat truth = radiance * simulator.scene().sensor.gain;
     std::vector<cv::Mat> images;

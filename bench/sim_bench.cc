@@ -21,7 +21,7 @@ using brdfrig::sim::Simulator;
 
 double SecondsPerImage(const Scene& scene, int reps, int threads) {
   const Simulator simulator(scene);
-  const brdfrig::rig::AxisPositions& positions = scene.capture.positions.at(2);  // 35°
+  const brdfrig::geometry::AxisPositions& positions = scene.capture.positions.at(2);  // 35°
   brdfrig::sim::RenderOptions options;
   options.threads = threads;
   double best = 1e300;

@@ -27,7 +27,8 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 std::string SimulatedRigYaml(const fs::path& scene_file, const sim::Scene& scene) {
   const std::string at = "{backend: sim, scene: \"" + scene_file.string() + "\"}";
   std::string yaml = "geometry: \"" + scene_file.string() + "\"\ncamera: " + at + "\naxes:\n";
-  for (const rig::RotationAxis& axis : scene.rig.axes) yaml += "  " + axis.name + ": " + at + "\n";
+  for (const geometry::RotationAxis& axis : scene.rig.axes)
+    yaml += "  " + axis.name + ": " + at + "\n";
   return yaml + "light: " + at + "\n";
 }
 
@@ -35,7 +36,7 @@ std::string SimulatedRigYaml(const fs::path& scene_file, const sim::Scene& scene
 std::string PlanYaml(const sim::Scene& scene) {
   std::string yaml =
       "sample: demo\noperator: brdfrig demo\nnotes: \"" + scene.Summary() + "\"\npositions:\n";
-  for (const rig::AxisPositions& position : scene.capture.positions) {
+  for (const geometry::AxisPositions& position : scene.capture.positions) {
     std::string entry;
     for (const auto& [axis, angle] : position) {
       entry += (entry.empty() ? "" : ", ") + axis + ": " + Fixed(angle / kDeg, 6);

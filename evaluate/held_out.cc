@@ -13,13 +13,13 @@ namespace {
 
 // Pixels inside the cut-out as the true camera sees it, shrunk by `margin` pixels so edge
 // pixels (part paper, part sample) do not count as sample.
-cv::Mat SampleMask(const sim::TrueGeometry& g, const rig::TargetGeometry& target, int margin) {
+cv::Mat SampleMask(const sim::TrueGeometry& g, const geometry::TargetGeometry& target, int margin) {
   cv::Mat mask(g.intrinsics.height, g.intrinsics.width, CV_8UC1, cv::Scalar(0));
   const double w = target.cutout_width / 2, h = target.cutout_height / 2;
   std::vector<cv::Point> corners;
   for (const auto& [x, y] : {std::pair{-w, -h}, {w, -h}, {w, h}, {-w, h}}) {
     Eigen::Vector2d px;
-    if (!rig::ProjectToPixel(g.intrinsics, g.camera, {x, y, 0}, &px)) return mask;
+    if (!geometry::ProjectToPixel(g.intrinsics, g.camera, {x, y, 0}, &px)) return mask;
     corners.emplace_back(static_cast<int>(std::lround(px.x())),
                          static_cast<int>(std::lround(px.y())));
   }

@@ -11,7 +11,7 @@
 
 #include "brdf/brdf.h"
 #include "evaluate/image_metrics.h"
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 #include "sim/scene.h"
 
 namespace brdfrig::evaluate {
@@ -19,7 +19,7 @@ namespace brdfrig::evaluate {
 struct HeldOutView {
   std::string name;
   double phi = 0;  // light azimuth out of the camera's plane of incidence (radians)
-  rig::AxisPositions positions;
+  geometry::AxisPositions positions;
 };
 
 // Views at a fixed elevation of camera and light (mirror configuration when phi = 0), the light

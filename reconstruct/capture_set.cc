@@ -31,7 +31,7 @@ CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir) {
     if (scene.is_relative() && !std::filesystem::exists(scene)) scene = photos / scene;
     // Only the scene's rig section is read: the nominal geometry, never the truth.
     const YamlNode root = LoadYamlFile(scene.string());
-    set.nominal = rig::ParseRigGeometry(root.Required("rig"));
+    set.nominal = geometry::ParseRigGeometry(root.Required("rig"));
     std::map<int, CapturePosition> by_index;
     for (const auto& frame : doc.at("frames")) {
       const int index = frame.at("position_index").get<int>();

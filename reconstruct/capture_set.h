@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 namespace brdfrig::reconstruct {
 
@@ -19,13 +19,13 @@ struct BracketFrame {
 
 struct CapturePosition {
   int index = 0;
-  rig::AxisPositions axis_readings;  // as the rig reported them (radians)
-  std::vector<BracketFrame> frames;  // any order; sorted by exposure when merged
+  geometry::AxisPositions axis_readings;  // as the rig reported them (radians)
+  std::vector<BracketFrame> frames;       // any order; sorted by exposure when merged
 };
 
 struct CaptureSet {
-  std::string name;          // for reports, e.g. the session directory
-  rig::RigGeometry nominal;  // intrinsics, target, nominal light geometry
+  std::string name;               // for reports, e.g. the session directory
+  geometry::RigGeometry nominal;  // intrinsics, target, nominal light geometry
   std::vector<CapturePosition> positions;
   std::vector<std::string> warnings;  // what the loader left out, and why
 };

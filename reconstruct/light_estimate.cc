@@ -9,7 +9,7 @@
 namespace brdfrig::reconstruct {
 namespace {
 
-double AngleBetween(const rig::Vec3& a, const rig::Vec3& b) {
+double AngleBetween(const geometry::Vec3& a, const geometry::Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
@@ -24,8 +24,8 @@ void LightOptions::Validate() const {
 }
 
 LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                            const rig::TargetGeometry& target, const rig::Vec3& nominal_light,
-                            const LightOptions& options) {
+                            const geometry::TargetGeometry& target,
+                            const geometry::Vec3& nominal_light, const LightOptions& options) {
   options.Validate();
   LightEstimate estimate;
   estimate.position = nominal_light;
@@ -133,8 +133,8 @@ LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const
                               : cv::Point2d(roi.x + sum_x / sum_w, roi.y + sum_y / sum_w);
   const auto x = view.PointAt(estimate.highlight_px.x, estimate.highlight_px.y);
   if (!x) return estimate;
-  const rig::Vec3 v = (view.camera_centre() - *x).normalized();
-  const rig::Vec3 l(-v.x(), -v.y(), v.z());  // mirror of v about the normal +z
+  const geometry::Vec3 v = (view.camera_centre() - *x).normalized();
+  const geometry::Vec3 l(-v.x(), -v.y(), v.z());  // mirror of v about the normal +z
   const double distance = (nominal_light - *x).norm();
   estimate.position = *x + l * distance;
   estimate.highlight_in_world = *x;

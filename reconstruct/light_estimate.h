@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/rig_geometry.h"
 #include "reconstruct/plane_view.h"
-#include "rig/geometry.h"
 
 namespace brdfrig::reconstruct {
 
@@ -23,17 +23,17 @@ struct LightOptions {
 };
 
 struct LightEstimate {
-  rig::Vec3 position = rig::Vec3::Zero();  // world, metres
-  bool from_highlight = false;             // false: the nominal light was used
-  bool saturated_peak = false;             // the highlight is clipped in every exposure
+  geometry::Vec3 position = geometry::Vec3::Zero();  // world, metres
+  bool from_highlight = false;                       // false: the nominal light was used
+  bool saturated_peak = false;                       // the highlight is clipped in every exposure
   cv::Point2d highlight_px{-1, -1};
-  rig::Vec3 highlight_in_world = rig::Vec3::Zero();
+  geometry::Vec3 highlight_in_world = geometry::Vec3::Zero();
   double nominal_disagreement_rad = 0;  // angle between measured and nominal light directions
   std::vector<std::string> warnings;
 };
 
 LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                            const rig::TargetGeometry& target, const rig::Vec3& nominal_light,
-                            const LightOptions& options);
+                            const geometry::TargetGeometry& target,
+                            const geometry::Vec3& nominal_light, const LightOptions& options);
 
 }  // namespace brdfrig::reconstruct

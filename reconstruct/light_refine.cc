@@ -10,15 +10,15 @@ namespace brdfrig::reconstruct {
 namespace {
 
 struct PixelRecord {
-  rig::Vec3 x;          // plane point
-  rig::Vec3 v;          // unit direction to the camera
+  geometry::Vec3 x;     // plane point
+  geometry::Vec3 v;     // unit direction to the camera
   double log_value[3];  // ln(HDR / k), R, G, B
 };
 
 // Residuals ln m_c(theta(l)) − ln(HDR_c / (k_c E(l))) for the three channels of one pixel.
 struct LightLobeResidual {
   const PixelRecord* pixel;
-  rig::Vec3 base, d0, e1, e2;
+  geometry::Vec3 base, d0, e1, e2;
   double distance;
 
   template <typename T>
@@ -55,9 +55,10 @@ void LightRefineOptions::Validate() const {
 }
 
 LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                            const rig::TargetGeometry& target, const SampleOptions& sample_options,
-                            const rig::Vec3& start_light, const Radiometry& radiometry,
-                            const SliceFit& start_fit, const LightRefineOptions& options) {
+                            const geometry::TargetGeometry& target,
+                            const SampleOptions& sample_options, const geometry::Vec3& start_light,
+                            const Radiometry& radiometry, const SliceFit& start_fit,
+                            const LightRefineOptions& options) {
   options.Validate();
   LightRefinement out;
   out.position = start_light;
@@ -92,11 +93,11 @@ LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const
   if (pixels.size() < 100) return out;
 
   // The light as base + distance · normalize(d0 + a e1 + b e2), base = the cut-out's centre.
-  const rig::Vec3 base = rig::Vec3::Zero();
-  const rig::Vec3 d0 = (start_light - base).normalized();
+  const geometry::Vec3 base = geometry::Vec3::Zero();
+  const geometry::Vec3 d0 = (start_light - base).normalized();
   const double distance = (start_light - base).norm();
-  const rig::Vec3 e1 = d0.unitOrthogonal();
-  const rig::Vec3 e2 = d0.cross(e1);
+  const geometry::Vec3 e1 = d0.unitOrthogonal();
+  const geometry::Vec3 e2 = d0.cross(e1);
   double light[2] = {0, 0};
   std::array<std::array<double, 4>, 3> lobes;
   for (int c = 0; c < 3; ++c) {
@@ -134,7 +135,7 @@ LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   if (!summary.IsSolutionUsable()) return out;
-  const rig::Vec3 dir = (d0 + light[0] * e1 + light[1] * e2).normalized();
+  const geometry::Vec3 dir = (d0 + light[0] * e1 + light[1] * e2).normalized();
   out.shift_rad = std::atan2(d0.cross(dir).norm(), d0.dot(dir));
   if (!(out.shift_rad <= options.max_shift_rad)) return out;
   out.position = base + distance * dir;

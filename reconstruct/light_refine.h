@@ -25,14 +25,15 @@ struct LightRefineOptions {
 };
 
 struct LightRefinement {
-  rig::Vec3 position = rig::Vec3::Zero();
+  geometry::Vec3 position = geometry::Vec3::Zero();
   double shift_rad = 0;  // angle between the start and the refined light direction
   bool accepted = false;
 };
 
 LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                            const rig::TargetGeometry& target, const SampleOptions& sample_options,
-                            const rig::Vec3& start_light, const Radiometry& radiometry,
-                            const SliceFit& start_fit, const LightRefineOptions& options);
+                            const geometry::TargetGeometry& target,
+                            const SampleOptions& sample_options, const geometry::Vec3& start_light,
+                            const Radiometry& radiometry, const SliceFit& start_fit,
+                            const LightRefineOptions& options);
 
 }  // namespace brdfrig::reconstruct

@@ -43,7 +43,7 @@ struct LoadedBracket {
   std::vector<double> exposures;
 };
 
-LoadedBracket LoadBracket(const CapturePosition& position, const rig::Intrinsics& intrinsics) {
+LoadedBracket LoadBracket(const CapturePosition& position, const geometry::Intrinsics& intrinsics) {
   if (position.frames.empty()) throw Error("no photos recorded");
   LoadedBracket bracket;
   for (const BracketFrame& frame : position.frames) {
@@ -120,7 +120,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   result.warnings = capture.warnings;
   for (const std::string& w : capture.warnings) say("warning: " + w);
   auto& seconds = result.stage_seconds;
-  const rig::RigGeometry& nominal = capture.nominal;
+  const geometry::RigGeometry& nominal = capture.nominal;
   if (!options.hdr_dir.empty()) std::filesystem::create_directories(options.hdr_dir);
 
   std::vector<const CapturePosition*> positions;
@@ -164,7 +164,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
         WriteFileAtomically(options.hdr_dir / (name + "_valid.png"),
                             std::string(png.begin(), png.end()));
       }
-      const rig::CameraPose nominal_pose = nominal.CameraAt(position->axis_readings);
+      const geometry::CameraPose nominal_pose = nominal.CameraAt(position->axis_readings);
       PoseEstimate pose;
       {
         StageTimer timer(&seconds, "target");
@@ -218,9 +218,9 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
         if (refined.accepted) {
           report.light_refinement_rad = refined.shift_rad;
           report.light.position = refined.position;
-          const rig::Vec3 nominal_light = nominal.LightAt(position->axis_readings);
-          const rig::Vec3 at = report.light.highlight_in_world;
-          const rig::Vec3 a = refined.position - at, b = nominal_light - at;
+          const geometry::Vec3 nominal_light = nominal.LightAt(position->axis_readings);
+          const geometry::Vec3 at = report.light.highlight_in_world;
+          const geometry::Vec3 a = refined.position - at, b = nominal_light - at;
           report.light.nominal_disagreement_rad = std::atan2(a.cross(b).norm(), a.dot(b));
           report.radiometry =
               CalibrateFromPaper(hdr.radiance, hdr.valid, view, report.light.position,

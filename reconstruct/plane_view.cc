@@ -5,11 +5,11 @@
 
 namespace brdfrig::reconstruct {
 
-PlaneView::PlaneView(const rig::Intrinsics& intrinsics, const rig::CameraPose& pose)
+PlaneView::PlaneView(const geometry::Intrinsics& intrinsics, const geometry::CameraPose& pose)
     : intrinsics_(intrinsics), pose_(pose), centre_(pose.CenterInWorld()) {}
 
-std::optional<rig::Vec3> PlaneView::PointAt(double x, double y) const {
-  const rig::Vec3 ray = rig::PixelRayInWorld(intrinsics_, pose_, {x, y});
+std::optional<geometry::Vec3> PlaneView::PointAt(double x, double y) const {
+  const geometry::Vec3 ray = geometry::PixelRayInWorld(intrinsics_, pose_, {x, y});
   if (ray.z() * centre_.z() >= 0) return std::nullopt;
   return centre_ + ray * (-centre_.z() / ray.z());
 }
@@ -19,11 +19,11 @@ PlaneView::Box PlaneView::PixelBox(double half_w, double half_h) const {
   // The rectangle's outline, densely, so radial distortion cannot bow an edge outside the box.
   for (int i = 0; i <= 64; ++i) {
     const double t = -1 + 2.0 * i / 64;
-    for (const rig::Vec3& p :
-         {rig::Vec3(t * half_w, -half_h, 0), rig::Vec3(t * half_w, half_h, 0),
-          rig::Vec3(-half_w, t * half_h, 0), rig::Vec3(half_w, t * half_h, 0)}) {
+    for (const geometry::Vec3& p :
+         {geometry::Vec3(t * half_w, -half_h, 0), geometry::Vec3(t * half_w, half_h, 0),
+          geometry::Vec3(-half_w, t * half_h, 0), geometry::Vec3(half_w, t * half_h, 0)}) {
       Eigen::Vector2d pixel;
-      if (!rig::ProjectToPixel(intrinsics_, pose_, p, &pixel)) continue;
+      if (!geometry::ProjectToPixel(intrinsics_, pose_, p, &pixel)) continue;
       x0 = std::min(x0, pixel.x());
       y0 = std::min(y0, pixel.y());
       x1 = std::max(x1, pixel.x());
@@ -39,8 +39,8 @@ PlaneView::Box PlaneView::PixelBox(double half_w, double half_h) const {
   return box;
 }
 
-double PointLightIrradiance(const rig::Vec3& light, const rig::Vec3& x) {
-  const rig::Vec3 d = light - x;
+double PointLightIrradiance(const geometry::Vec3& light, const geometry::Vec3& x) {
+  const geometry::Vec3 d = light - x;
   const double d2 = d.squaredNorm();
   return std::max(d.z(), 0.0) / (d2 * std::sqrt(d2));
 }

@@ -5,18 +5,18 @@
 
 #include <optional>
 
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 namespace brdfrig::reconstruct {
 
 class PlaneView {
  public:
-  PlaneView(const rig::Intrinsics& intrinsics, const rig::CameraPose& pose);
+  PlaneView(const geometry::Intrinsics& intrinsics, const geometry::CameraPose& pose);
 
   // The plane point seen through the pixel's centre ((x, y) are pixel indices); nullopt when
   // the ray misses the plane (looks away from it).
-  std::optional<rig::Vec3> PointAt(double x, double y) const;
-  const rig::Vec3& camera_centre() const { return centre_; }
+  std::optional<geometry::Vec3> PointAt(double x, double y) const;
+  const geometry::Vec3& camera_centre() const { return centre_; }
 
   // Axis-aligned pixel box covering the plane rectangle |x| <= half_w, |y| <= half_h, clipped to
   // the image: [x0, x1) × [y0, y1).
@@ -26,12 +26,12 @@ class PlaneView {
   Box PixelBox(double half_w, double half_h) const;
 
  private:
-  rig::Intrinsics intrinsics_;
-  rig::CameraPose pose_;
-  rig::Vec3 centre_;
+  geometry::Intrinsics intrinsics_;
+  geometry::CameraPose pose_;
+  geometry::Vec3 centre_;
 };
 
 // Irradiance factor cos(theta_l) / d² at a plane point for a point light (unit intensity).
-double PointLightIrradiance(const rig::Vec3& light, const rig::Vec3& x);
+double PointLightIrradiance(const geometry::Vec3& light, const geometry::Vec3& x);
 
 }  // namespace brdfrig::reconstruct

@@ -39,7 +39,7 @@ void RadiometryOptions::Validate() const {
 }
 
 Radiometry CalibrateFromPaper(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                              const rig::Vec3& light, const rig::TargetGeometry& target,
+                              const geometry::Vec3& light, const geometry::TargetGeometry& target,
                               const RadiometryOptions& options) {
   options.Validate();
   const double band_x = (target.paper_width - target.cutout_width) / 2;

@@ -8,8 +8,8 @@
 #include <array>
 #include <opencv2/core.hpp>
 
+#include "geometry/rig_geometry.h"
 #include "reconstruct/plane_view.h"
-#include "rig/geometry.h"
 
 namespace brdfrig::reconstruct {
 
@@ -40,7 +40,7 @@ struct Radiometry {
 
 // Throws brdfrig::Error when the paper cannot be seen (fewer than 100 usable pixels).
 Radiometry CalibrateFromPaper(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                              const rig::Vec3& light, const rig::TargetGeometry& target,
+                              const geometry::Vec3& light, const geometry::TargetGeometry& target,
                               const RadiometryOptions& options);
 
 }  // namespace brdfrig::reconstruct

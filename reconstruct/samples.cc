@@ -25,15 +25,15 @@ double BrdfSamples::ThetaMax() const {
 }
 
 BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                           const rig::Vec3& light, const Radiometry& radiometry,
-                           const rig::TargetGeometry& target, const SampleOptions& options) {
+                           const geometry::Vec3& light, const Radiometry& radiometry,
+                           const geometry::TargetGeometry& target, const SampleOptions& options) {
   options.Validate();
-  const rig::Vec3 n = rig::Vec3::UnitZ();
+  const geometry::Vec3 n = geometry::Vec3::UnitZ();
   const double margin = options.edge_margin * std::min(target.cutout_width, target.cutout_height);
   const double half_w = target.cutout_width / 2 - margin;
   const double half_h = target.cutout_height / 2 - margin;
   const PlaneView::Box box = view.PixelBox(half_w, half_h);
-  const rig::Vec3& camera = view.camera_centre();
+  const geometry::Vec3& camera = view.camera_centre();
 
   BrdfSamples out;
   out.theta_in = brdf::ComputeSliceAngles(light.normalized(), camera.normalized(), n).theta_in;
@@ -62,8 +62,8 @@ BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const 
           previous_theta = -1;
           continue;
         }
-        const rig::Vec3 l = (light - *p).normalized();
-        const rig::Vec3 v = (camera - *p).normalized();
+        const geometry::Vec3 l = (light - *p).normalized();
+        const geometry::Vec3 v = (camera - *p).normalized();
         const brdf::SliceAngles angles = brdf::ComputeSliceAngles(l, v, n);
         const double e = PointLightIrradiance(light, *p);
         const cv::Vec3f value = radiance.at<cv::Vec3f>(y, x);

@@ -9,9 +9,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "geometry/rig_geometry.h"
 #include "reconstruct/plane_view.h"
 #include "reconstruct/radiometry.h"
-#include "rig/geometry.h"
 
 namespace brdfrig::reconstruct {
 
@@ -37,7 +37,7 @@ struct BrdfSamples {
 };
 
 BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
-                           const rig::Vec3& light, const Radiometry& radiometry,
-                           const rig::TargetGeometry& target, const SampleOptions& options);
+                           const geometry::Vec3& light, const Radiometry& radiometry,
+                           const geometry::TargetGeometry& target, const SampleOptions& options);
 
 }  // namespace brdfrig::reconstruct

@@ -33,17 +33,18 @@ float Bilinear(const cv::Mat& image, const cv::Point2d& p) {
                             fy * ((1 - fx) * r1[x0] + fx * r1[x0 + 1]));
 }
 
-bool Project(const rig::Intrinsics& k, const rig::CameraPose& pose, const rig::Vec3& x,
-             cv::Point2d* pixel) {
+bool Project(const geometry::Intrinsics& k, const geometry::CameraPose& pose,
+             const geometry::Vec3& x, cv::Point2d* pixel) {
   Eigen::Vector2d p;
-  if (!rig::ProjectToPixel(k, pose, x, &p)) return false;
+  if (!geometry::ProjectToPixel(k, pose, x, &p)) return false;
   *pixel = {p.x(), p.y()};
   return true;
 }
 
-std::array<rig::Vec3, 4> WorldCorners(const rig::TargetGeometry& target) {
+std::array<geometry::Vec3, 4> WorldCorners(const geometry::TargetGeometry& target) {
   const double w = target.cutout_width / 2, h = target.cutout_height / 2;
-  return {rig::Vec3(-w, -h, 0), rig::Vec3(w, -h, 0), rig::Vec3(w, h, 0), rig::Vec3(-w, h, 0)};
+  return {geometry::Vec3(-w, -h, 0), geometry::Vec3(w, -h, 0), geometry::Vec3(w, h, 0),
+          geometry::Vec3(-w, h, 0)};
 }
 
 // Fits a line to points (Huber), drops points farther than 3 px and refits once.
@@ -113,20 +114,23 @@ void TargetOptions::Validate() const {
     throw OptionsError("TargetOptions.max_reprojection_px must be > 0");
 }
 
-cv::Matx33d CameraMatrix(const rig::Intrinsics& k) {
+cv::Matx33d CameraMatrix(const geometry::Intrinsics& k) {
   return {k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1};
 }
 
-cv::Point2d UndistortPixel(const rig::Intrinsics& k, const cv::Point2d& pixel) {
+cv::Point2d UndistortPixel(const geometry::Intrinsics& k, const cv::Point2d& pixel) {
   if (k.k1 == 0 && k.k2 == 0) return pixel;
   // The ray through the pixel, projected again without distortion.
-  const rig::Vec3 ray = rig::PixelRayInWorld(k, rig::CameraPose{}, {pixel.x, pixel.y});
+  const geometry::Vec3 ray =
+      geometry::PixelRayInWorld(k, geometry::CameraPose{}, {pixel.x, pixel.y});
   return {k.fx * ray.x() / ray.z() + k.cx, k.fy * ray.y() / ray.z() + k.cy};
 }
 
 TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
-                                const rig::Intrinsics& intrinsics, const rig::CameraPose& nominal,
-                                const rig::TargetGeometry& target, const TargetOptions& options) {
+                                const geometry::Intrinsics& intrinsics,
+                                const geometry::CameraPose& nominal,
+                                const geometry::TargetGeometry& target,
+                                const TargetOptions& options) {
   options.Validate();
   (void)valid;  // clipped pixels keep their lower bound, which still marks an edge
   const cv::Mat lum = Luminance(radiance);
@@ -136,10 +140,10 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
   TargetCorners result;
   double rms_sum = 0;
   for (int e = 0; e < 4; ++e) {
-    const rig::Vec3 a = world[e], b = world[(e + 1) % 4];
-    const rig::Vec3 along = (b - a).normalized();
-    const rig::Vec3 outward = along.cross(rig::Vec3::UnitZ()).normalized() *
-                              (along.cross(rig::Vec3::UnitZ()).dot(a) > 0 ? 1.0 : -1.0);
+    const geometry::Vec3 a = world[e], b = world[(e + 1) % 4];
+    const geometry::Vec3 along = (b - a).normalized();
+    const geometry::Vec3 outward = along.cross(geometry::Vec3::UnitZ()).normalized() *
+                                   (along.cross(geometry::Vec3::UnitZ()).dot(a) > 0 ? 1.0 : -1.0);
     cv::Point2d pa, pb;
     if (!Project(intrinsics, nominal, a, &pa) || !Project(intrinsics, nominal, b, &pb)) {
       throw Error("target not found: the nominal pose puts the cut-out behind the camera");
@@ -152,7 +156,7 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
     std::array<float, kProfileSamples> linear, value;  // luminance and its log
     for (int i = 0; i < profiles; ++i) {
       const double t = options.corner_skip + (1 - 2 * options.corner_skip) * (i + 0.5) / profiles;
-      const rig::Vec3 on_edge = a + t * (b - a);
+      const geometry::Vec3 on_edge = a + t * (b - a);
       bool inside = true;
       for (int j = 0; j < kProfileSamples; ++j) {
         const double u = band * (2.0 * j / (kProfileSamples - 1) - 1);
@@ -221,11 +225,11 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
   return result;
 }
 
-PoseEstimate EstimatePose(const TargetCorners& corners, const rig::Intrinsics& intrinsics,
-                          const rig::TargetGeometry& target, const rig::CameraPose& nominal,
-                          const TargetOptions& options) {
+PoseEstimate EstimatePose(const TargetCorners& corners, const geometry::Intrinsics& intrinsics,
+                          const geometry::TargetGeometry& target,
+                          const geometry::CameraPose& nominal, const TargetOptions& options) {
   std::vector<cv::Point3d> object;
-  for (const rig::Vec3& w : WorldCorners(target)) object.emplace_back(w.x(), w.y(), w.z());
+  for (const geometry::Vec3& w : WorldCorners(target)) object.emplace_back(w.x(), w.y(), w.z());
   std::vector<cv::Point2d> image(corners.corners.begin(), corners.corners.end());
   const cv::Mat k(CameraMatrix(intrinsics));
   cv::Mat rvec, tvec;
@@ -250,9 +254,9 @@ PoseEstimate EstimatePose(const TargetCorners& corners, const rig::Intrinsics& i
   }
   estimate.pose.camera_from_world.linear() = rotation;
   estimate.pose.camera_from_world.translation() =
-      rig::Vec3(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
-  const rig::Vec3 centre = estimate.pose.CenterInWorld();
-  const rig::Vec3 nominal_centre = nominal.CenterInWorld();
+      geometry::Vec3(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+  const geometry::Vec3 centre = estimate.pose.CenterInWorld();
+  const geometry::Vec3 nominal_centre = nominal.CenterInWorld();
   estimate.distance_m = centre.norm();
   estimate.nominal_disagreement_m = (centre - nominal_centre).norm();
   if (estimate.reprojection_rms_px > options.max_reprojection_px) {

@@ -14,7 +14,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 namespace brdfrig::reconstruct {
 
@@ -40,7 +40,7 @@ struct TargetCorners {
 };
 
 struct PoseEstimate {
-  rig::CameraPose pose;
+  geometry::CameraPose pose;
   double reprojection_rms_px = 0;
   double distance_m = 0;              // camera centre to the cut-out's centre
   double nominal_disagreement_m = 0;  // |measured centre - nominal centre|
@@ -48,17 +48,19 @@ struct PoseEstimate {
 
 // Throws brdfrig::Error ("target not found: ...") when an edge has too few clear profiles.
 TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
-                                const rig::Intrinsics& intrinsics, const rig::CameraPose& nominal,
-                                const rig::TargetGeometry& target, const TargetOptions& options);
+                                const geometry::Intrinsics& intrinsics,
+                                const geometry::CameraPose& nominal,
+                                const geometry::TargetGeometry& target,
+                                const TargetOptions& options);
 
 // Planar PnP (IPPE) refined by Levenberg–Marquardt on the four corners. Throws brdfrig::Error for
 // an implausible pose (reprojection error, camera below the sample, far from nominal).
-PoseEstimate EstimatePose(const TargetCorners& corners, const rig::Intrinsics& intrinsics,
-                          const rig::TargetGeometry& target, const rig::CameraPose& nominal,
-                          const TargetOptions& options);
+PoseEstimate EstimatePose(const TargetCorners& corners, const geometry::Intrinsics& intrinsics,
+                          const geometry::TargetGeometry& target,
+                          const geometry::CameraPose& nominal, const TargetOptions& options);
 
 // Intrinsics with the distortion removed (what undistorted pixel coordinates refer to).
-cv::Matx33d CameraMatrix(const rig::Intrinsics& intrinsics);
-cv::Point2d UndistortPixel(const rig::Intrinsics& intrinsics, const cv::Point2d& pixel);
+cv::Matx33d CameraMatrix(const geometry::Intrinsics& intrinsics);
+cv::Point2d UndistortPixel(const geometry::Intrinsics& intrinsics, const cv::Point2d& pixel);
 
 }  // namespace brdfrig::reconstruct

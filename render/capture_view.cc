@@ -26,7 +26,7 @@ std::unique_ptr<GpuMaterial> MakeGpuMaterial(const brdf::Brdf& brdf) {
 }
 
 cv::Mat RenderCaptureView(const CaptureView& capture, const brdf::Brdf& sample) {
-  const rig::TargetGeometry& t = capture.target;
+  const geometry::TargetGeometry& t = capture.target;
   const auto cw = static_cast<float>(t.cutout_width), ch = static_cast<float>(t.cutout_height);
   const auto pw = static_cast<float>(t.paper_width), ph = static_cast<float>(t.paper_height);
   constexpr float kTable = 10.0f;  // far beyond any view of the rig
@@ -43,7 +43,7 @@ cv::Mat RenderCaptureView(const CaptureView& capture, const brdf::Brdf& sample) 
   // the simulator's: pixel u covers fine pixels u·n … u·n + n − 1.
   const int n = std::max(1, capture.supersampling);
   View fine = capture.view;
-  rig::Intrinsics& k = fine.intrinsics;
+  geometry::Intrinsics& k = fine.intrinsics;
   k.width *= n;
   k.height *= n;
   k.fx *= n;

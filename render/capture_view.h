@@ -8,8 +8,8 @@
 #include <opencv2/core.hpp>
 
 #include "brdf/brdf.h"
+#include "geometry/rig_geometry.h"
 #include "render/renderer.h"
-#include "rig/geometry.h"
 
 namespace brdfrig::render {
 
@@ -18,7 +18,7 @@ namespace brdfrig::render {
 std::unique_ptr<GpuMaterial> MakeGpuMaterial(const brdf::Brdf& brdf);
 
 struct CaptureView {
-  rig::TargetGeometry target;  // cut-out and paper sizes, paper albedo
+  geometry::TargetGeometry target;  // cut-out and paper sizes, paper albedo
   brdf::Rgb background_albedo = brdf::Rgb::Constant(0.05);
   View view;  // camera intrinsics and pose
   PointLight light;

@@ -5,7 +5,7 @@
 namespace brdfrig::render {
 
 Eigen::Matrix4f ClipFromWorld(const View& view) {
-  const rig::Intrinsics& k = view.intrinsics;
+  const geometry::Intrinsics& k = view.intrinsics;
   const double w = k.width, h = k.height, n = view.near, f = view.far;
   // OpenCV pixel u = fx x/z + cx has its centre at GL window x = u + 0.5; rows are flipped on
   // read-back, so image row v is GL window row h - v - 1.

@@ -1,15 +1,15 @@
-// Renders meshes with GPU materials from a calibrated camera (rig::Intrinsics + rig::CameraPose,
-// OpenCV conventions, pixel centres at integer coordinates) into a linear float target, so a
-// rendering reproduces a capture's geometry exactly. Needs a current GlContext.
+// Renders meshes with GPU materials from a calibrated camera (geometry::Intrinsics +
+// geometry::CameraPose, OpenCV conventions, pixel centres at integer coordinates) into a linear
+// float target, so a rendering reproduces a capture's geometry exactly. Needs a current GlContext.
 #pragma once
 
 #include <opencv2/core.hpp>
 #include <vector>
 
 #include "brdf/brdf.h"
+#include "geometry/rig_geometry.h"
 #include "render/gpu_material.h"
 #include "render/mesh.h"
-#include "rig/geometry.h"
 
 namespace brdfrig::render {
 
@@ -19,8 +19,8 @@ struct PointLight {
 };
 
 struct View {
-  rig::Intrinsics intrinsics;  // distortion is not applied (pinhole rendering)
-  rig::CameraPose pose;
+  geometry::Intrinsics intrinsics;  // distortion is not applied (pinhole rendering)
+  geometry::CameraPose pose;
   double near = 0.01, far = 20;  // metres
 };
 
@@ -29,7 +29,7 @@ struct DrawItem {
   const GpuMaterial* material = nullptr;
 };
 
-// OpenGL clip-space transform for a pinhole camera, matching rig::ProjectToPixel (no
+// OpenGL clip-space transform for a pinhole camera, matching geometry::ProjectToPixel (no
 // distortion) with the image's row 0 at the top after Renderer's read-back.
 Eigen::Matrix4f ClipFromWorld(const View& view);
 

@@ -33,10 +33,11 @@ RigDescription ReadRigDescription(const std::filesystem::path& rig_file) {
     }
     // A scene file (or any file) whose `rig:` section is the geometry; its other sections are
     // the simulator's business, so only `rig:` is read here.
-    description.geometry = ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
+    description.geometry =
+        geometry::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
     description.source_files.push_back(geometry_file);
   } else {
-    description.geometry = ParseRigGeometry(geometry);
+    description.geometry = geometry::ParseRigGeometry(geometry);
   }
 
   BackendOf(root.Required("camera"));

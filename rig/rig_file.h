@@ -20,16 +20,16 @@
 #include <memory>
 #include <string>
 
+#include "geometry/rig_geometry.h"
 #include "rig/axis.h"
 #include "rig/camera.h"
-#include "rig/geometry.h"
 
 namespace brdfrig::rig {
 
 // A rig file read without opening any device: enough to check a plan or to reconstruct.
 struct RigDescription {
   std::filesystem::path file;
-  RigGeometry geometry;
+  geometry::RigGeometry geometry;
   // Files a session must copy to be reprocessable on its own: the rig file itself and, when
   // the geometry lives in another file, that file.
   std::vector<std::filesystem::path> source_files;

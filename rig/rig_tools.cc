@@ -159,7 +159,7 @@ RigCheckReport CheckRig(const std::filesystem::path& rig_file) {
       });
     }
   }
-  for (const RotationAxis& axis : description.geometry.axes) {
+  for (const geometry::RotationAxis& axis : description.geometry.axes) {
     if (!root.Optional("axes") || !root.Optional("axes")->Has(axis.name)) {
       report.devices.push_back(
           {axis.name, "-", true, "in the geometry but not motorized (fixed at 0)"});

@@ -47,7 +47,7 @@ double SimCamera::SetExposure(double seconds) { return world_->SetExposure(secon
 std::vector<rig::Frame> SimCamera::Capture() {
   const ShotTicket shot = world_->BeginShot();
   const Simulator& simulator = world_->simulator();
-  const std::pair<rig::AxisPositions, bool> key{shot.true_positions, shot.light_on};
+  const std::pair<geometry::AxisPositions, bool> key{shot.true_positions, shot.light_on};
   const bool new_pose = !cached_key_ || *cached_key_ != key;
   if (new_pose) {
     RenderOptions options;

@@ -12,7 +12,7 @@ namespace brdfrig::sim {
 namespace {
 
 using brdf::Rgb;
-using rig::Vec3;
+using geometry::Vec3;
 
 enum Surface : std::uint8_t { kSky = 0, kTable = 1, kPaper = 2, kSample = 3 };
 
@@ -54,13 +54,13 @@ class Shader {
         sample_albedo_(sample_albedo) {}
 
   Vec3 Ray(double u, double v) const {
-    return rig::PixelRayInWorld(g_.intrinsics, g_.camera, Eigen::Vector2d(u, v));
+    return geometry::PixelRayInWorld(g_.intrinsics, g_.camera, Eigen::Vector2d(u, v));
   }
 
   Surface SurfaceAt(const Vec3& ray, Vec3* point) const {
     if (ray.z() >= 0 || center_.z() <= 0) return kSky;
     *point = center_ - (center_.z() / ray.z()) * ray;
-    const rig::TargetGeometry& t = scene_.rig.target;
+    const geometry::TargetGeometry& t = scene_.rig.target;
     const double ax = std::abs(point->x()), ay = std::abs(point->y());
     if (ax <= 0.5 * t.cutout_width && ay <= 0.5 * t.cutout_height) {
       return ax <= 0.5 * scene_.sample.width && ay <= 0.5 * scene_.sample.height ? kSample : kTable;

@@ -12,7 +12,7 @@ namespace {
 constexpr double kDegree = M_PI / 180.0;
 
 SampleDescription ParseSample(const YamlNode& node, const std::filesystem::path& base_dir,
-                              const rig::TargetGeometry& target) {
+                              const geometry::TargetGeometry& target) {
   SampleDescription s;
   s.brdf = ParseSampleBrdf(node.Required("brdf"), base_dir);
   // By default the sample fills the whole cut-out and then some (it lies under the paper).
@@ -74,7 +74,7 @@ AxisTiming ParseAxisTiming(const YamlNode& node, AxisTiming t) {
   return t;
 }
 
-TimingDescription ParseTiming(const YamlNode& node, const rig::RigGeometry& rig) {
+TimingDescription ParseTiming(const YamlNode& node, const geometry::RigGeometry& rig) {
   TimingDescription t;
   if (auto axes = node.Optional("axes")) {
     t.default_axis = ParseAxisTiming(*axes, t.default_axis);
@@ -98,11 +98,12 @@ TimingDescription ParseTiming(const YamlNode& node, const rig::RigGeometry& rig)
   return t;
 }
 
-rig::AxisPositions ParsePositionDegrees(const YamlNode& node, const rig::RigGeometry& rig) {
-  rig::AxisPositions positions;
+geometry::AxisPositions ParsePositionDegrees(const YamlNode& node,
+                                             const geometry::RigGeometry& rig) {
+  geometry::AxisPositions positions;
   for (const std::string& name : node.Keys()) {
     const YamlNode value = node.Required(name);
-    const rig::RotationAxis* axis = rig.FindAxis(name);
+    const geometry::RotationAxis* axis = rig.FindAxis(name);
     if (!axis) value.Fail("no axis named '" + name + "' in rig.axes");
     const double angle = value.AsDouble() * kDegree;
     if (angle < axis->min - 1e-9 || angle > axis->max + 1e-9) {
@@ -113,7 +114,7 @@ rig::AxisPositions ParsePositionDegrees(const YamlNode& node, const rig::RigGeom
   return positions;
 }
 
-CapturePlan ParseCapture(const YamlNode& node, const rig::RigGeometry& rig) {
+CapturePlan ParseCapture(const YamlNode& node, const geometry::RigGeometry& rig) {
   CapturePlan c;
   if (auto exposures = node.Optional("exposures")) {
     c.exposures = exposures->AsDoubles();
@@ -128,7 +129,7 @@ CapturePlan ParseCapture(const YamlNode& node, const rig::RigGeometry& rig) {
   return c;
 }
 
-SimFault ParseFault(const YamlNode& node, const rig::RigGeometry& rig) {
+SimFault ParseFault(const YamlNode& node, const geometry::RigGeometry& rig) {
   SimFault f{};
   const YamlNode type = node.Required("type");
   const std::string name = type.AsString();
@@ -202,7 +203,7 @@ std::string Scene::Summary() const {
 Scene ParseScene(const YamlNode& root, const std::filesystem::path& base_dir) {
   Scene scene;
   const YamlNode rig_node = root.Required("rig");
-  scene.rig = rig::ParseRigGeometry(rig_node);
+  scene.rig = geometry::ParseRigGeometry(rig_node);
   if (scene.rig.intrinsics.k1 != 0 || scene.rig.intrinsics.k2 != 0) {
     rig_node.Required("camera")
         .Required("distortion")
@@ -240,8 +241,8 @@ Scene LoadSceneString(const std::string& yaml, const std::string& source_name,
   return scene;
 }
 
-rig::AxisPositions ParsePositionsDegrees(const std::string& text) {
-  rig::AxisPositions positions;
+geometry::AxisPositions ParsePositionsDegrees(const std::string& text) {
+  geometry::AxisPositions positions;
   std::istringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {

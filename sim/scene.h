@@ -1,7 +1,7 @@
 // scene.yaml: everything the simulator needs to know about the simulated world. The full key
 // reference with an example is docs/sim_scene.md; sim/scenes/default.yaml is the shipped scene.
 //
-//   rig:        rig::ParseRigGeometry (camera, light, axes, target = paper mask with cut-out)
+//   rig:        geometry::ParseRigGeometry (camera, light, axes, target = paper mask with cut-out)
 //   sample:     {brdf: {model: ggx|cook_torrance|ward|blinn_phong|lambert|slices|merl, ...},
 //                size: [w, h]}
 //   background: {albedo: grey or [r, g, b]}       the table around the paper (Lambertian)
@@ -22,7 +22,7 @@
 
 #include "brdf/brdf.h"
 #include "common/yaml_reader.h"
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 #include "sim/effects.h"
 
 namespace brdfrig::sim {
@@ -79,13 +79,13 @@ struct SimFault {
 };
 
 struct CapturePlan {
-  std::vector<double> exposures;              // seconds
-  std::vector<rig::AxisPositions> positions;  // radians
+  std::vector<double> exposures;                   // seconds
+  std::vector<geometry::AxisPositions> positions;  // radians
 };
 
 struct Scene {
   std::filesystem::path source;  // the file it came from ("" for strings), for messages
-  rig::RigGeometry rig;
+  geometry::RigGeometry rig;
   SampleDescription sample;
   brdf::Rgb background_albedo = brdf::Rgb::Constant(0.05);
   SensorDescription sensor;
@@ -108,6 +108,6 @@ Scene LoadSceneString(const std::string& yaml, const std::string& source_name,
                       const std::filesystem::path& base_dir = ".");
 
 // Axis positions written as "axis=degrees,axis=degrees" (the command line's --positions).
-rig::AxisPositions ParsePositionsDegrees(const std::string& text);
+geometry::AxisPositions ParsePositionsDegrees(const std::string& text);
 
 }  // namespace brdfrig::sim

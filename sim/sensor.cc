@@ -13,7 +13,7 @@ namespace {
 constexpr std::uint64_t kShotNoiseStream = 1;
 constexpr std::uint64_t kReadNoiseStream = 2;
 
-double VignettingFactor(const VignettingEffect& v, const rig::Intrinsics& k, int x, int y) {
+double VignettingFactor(const VignettingEffect& v, const geometry::Intrinsics& k, int x, int y) {
   const double dx = x - k.cx, dy = y - k.cy;
   if (v.falloff == VignettingEffect::Falloff::kCos4) {
     // cos of the angle between the pixel's ray and the optical axis, to the fourth.
@@ -28,7 +28,7 @@ double VignettingFactor(const VignettingEffect& v, const rig::Intrinsics& k, int
 
 }  // namespace
 
-cv::Mat ApplySensor(const Scene& scene, const rig::Intrinsics& k, const cv::Mat& radiance,
+cv::Mat ApplySensor(const Scene& scene, const geometry::Intrinsics& k, const cv::Mat& radiance,
                     double exposure_s, std::uint64_t frame, int threads) {
   CV_Assert(radiance.type() == CV_32FC3);
   const Effects& fx = scene.effects;

@@ -4,12 +4,12 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 #include "sim/scene.h"
 
 namespace brdfrig::sim {
 
-cv::Mat ApplySensor(const Scene& scene, const rig::Intrinsics& intrinsics, const cv::Mat& radiance,
-                    double exposure_s, std::uint64_t frame, int threads);
+cv::Mat ApplySensor(const Scene& scene, const geometry::Intrinsics& intrinsics,
+                    const cv::Mat& radiance, double exposure_s, std::uint64_t frame, int threads);
 
 }  // namespace brdfrig::sim

@@ -90,7 +90,7 @@ SimulateSummary Simulate(const SimulateOptions& options) {
 
   SimCamera camera(world, {}, options.threads);
   std::map<std::string, SimAxis> axes;
-  for (const rig::RotationAxis& axis : scene.rig.axes)
+  for (const geometry::RotationAxis& axis : scene.rig.axes)
     axes.emplace(axis.name, SimAxis(world, axis.name));
   nlohmann::json log = {{"scene", options.scene.string()}, {"frames", nlohmann::json::array()}};
 
@@ -124,7 +124,7 @@ SimulateSummary Simulate(const SimulateOptions& options) {
     }
     if (options.write_truth) {
       // The truth of what was photographed: where the arms really were.
-      const rig::AxisPositions truth = world->TruePositions();
+      const geometry::AxisPositions truth = world->TruePositions();
       const std::string stem = Name("p%02d", static_cast<int>(p));
       RenderOptions render;
       render.threads = options.threads;

@@ -11,16 +11,16 @@
 #include <string>
 #include <vector>
 
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 namespace brdfrig::sim {
 
 struct SimulateOptions {
   std::filesystem::path scene;
   std::filesystem::path output_dir;
-  std::vector<rig::AxisPositions> positions;  // radians; empty: the scene's capture.positions
-  std::vector<double> exposures;              // seconds; empty: the scene's capture.exposures
-  int threads = 0;                            // 0 = all hardware threads
+  std::vector<geometry::AxisPositions> positions;  // radians; empty: the scene's capture.positions
+  std::vector<double> exposures;                   // seconds; empty: the scene's capture.exposures
+  int threads = 0;                                 // 0 = all hardware threads
   bool write_truth = true;
   void Validate() const;  // throws OptionsError
 };

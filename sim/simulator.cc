@@ -10,7 +10,7 @@
 namespace brdfrig::sim {
 namespace {
 
-nlohmann::json VecJson(const rig::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json VecJson(const geometry::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 // Points of the directional-albedo table used by the ambient effect.
 constexpr int kAlbedoTableSize = 33;
@@ -24,7 +24,7 @@ nlohmann::json TrueGeometry::ToJson() const {
   nlohmann::json axes = nlohmann::json::object();
   for (const auto& [name, angle] : positions) axes[name] = angle;
   j["axis_positions_rad"] = axes;
-  const rig::Intrinsics& k = intrinsics;
+  const geometry::Intrinsics& k = intrinsics;
   j["intrinsics"] = {{"width", k.width}, {"height", k.height}, {"fx", k.fx}, {"fy", k.fy},
                      {"cx", k.cx},       {"cy", k.cy},         {"k1", k.k1}, {"k2", k.k2}};
   nlohmann::json matrix = nlohmann::json::array();
@@ -50,7 +50,7 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   }
 }
 
-TrueGeometry Simulator::GeometryAt(const rig::AxisPositions& positions, bool light_on) const {
+TrueGeometry Simulator::GeometryAt(const geometry::AxisPositions& positions, bool light_on) const {
   TrueGeometry g;
   g.positions = positions;
   g.intrinsics = scene_.rig.intrinsics;
@@ -66,7 +66,7 @@ TrueGeometry Simulator::GeometryAt(const rig::AxisPositions& positions, bool lig
   return g;
 }
 
-cv::Mat Simulator::RenderRadiance(const rig::AxisPositions& positions,
+cv::Mat Simulator::RenderRadiance(const geometry::AxisPositions& positions,
                                   const RenderOptions& options) const {
   return SynthesizeRadiance(scene_, GeometryAt(positions, options.light_on), sample_albedo_,
                             options.threads);
@@ -80,7 +80,7 @@ cv::Mat Simulator::Expose(const cv::Mat& radiance, double exposure_s, std::uint6
   return ApplySensor(scene_, GeometryAt({}).intrinsics, radiance, exposure_s, frame, threads);
 }
 
-cv::Mat Simulator::RenderCameraImage(const rig::AxisPositions& positions, double exposure_s,
+cv::Mat Simulator::RenderCameraImage(const geometry::AxisPositions& positions, double exposure_s,
                                      std::uint64_t frame, const RenderOptions& options) const {
   return Expose(RenderRadiance(positions, options), exposure_s, frame, options.threads);
 }

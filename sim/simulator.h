@@ -12,9 +12,9 @@
 //
 //   sim::WriteRadianceExr(path, L); sim::WriteTrueGeometry(path, g);     (sim/image_io.h)
 //
-// Conventions. Positions are rig::AxisPositions in radians (the true positions of the axes:
+// Conventions. Positions are geometry::AxisPositions in radians (the true positions of the axes:
 // mechanical error is applied by the simulated axes, sim/world.h). Pixel (u, v) is the image
-// of the ray rig::PixelRayInWorld(g.intrinsics, g.camera, {u, v}): pixel centres at integer
+// of the ray geometry::PixelRayInWorld(g.intrinsics, g.camera, {u, v}): pixel centres at integer
 // coordinates (OpenCV). Images are cv::Mat in OpenCV's channel order (B, G, R), like
 // cv::imread returns them; brdf::Rgb values are (R, G, B).
 //
@@ -36,7 +36,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 #include "sim/scene.h"
 
 namespace brdfrig::sim {
@@ -44,12 +44,12 @@ namespace brdfrig::sim {
 // Where everything truly is for one set of axis positions (for evaluation, never for the
 // reconstruction).
 struct TrueGeometry {
-  rig::AxisPositions positions;  // radians
-  rig::Intrinsics intrinsics;    // includes the radial_distortion effect's k1, k2
-  rig::CameraPose camera;
-  rig::Vec3 light_position = rig::Vec3::Zero();  // world, metres
-  double light_intensity = 0;                    // W/sr (point light; total for an area light)
-  double light_radius = 0;                       // area_light radius, 0 for a point light
+  geometry::AxisPositions positions;  // radians
+  geometry::Intrinsics intrinsics;    // includes the radial_distortion effect's k1, k2
+  geometry::CameraPose camera;
+  geometry::Vec3 light_position = geometry::Vec3::Zero();  // world, metres
+  double light_intensity = 0;  // W/sr (point light; total for an area light)
+  double light_radius = 0;     // area_light radius, 0 for a point light
   bool light_on = true;
 
   nlohmann::json ToJson() const;
@@ -66,11 +66,11 @@ class Simulator {
 
   const Scene& scene() const { return scene_; }
 
-  TrueGeometry GeometryAt(const rig::AxisPositions& positions, bool light_on = true) const;
+  TrueGeometry GeometryAt(const geometry::AxisPositions& positions, bool light_on = true) const;
 
   // Radiance reaching each pixel (world effects area_light, ambient, radial_distortion
   // included when listed). CV_32FC3, B,G,R.
-  cv::Mat RenderRadiance(const rig::AxisPositions& positions,
+  cv::Mat RenderRadiance(const geometry::AxisPositions& positions,
                          const RenderOptions& options = {}) const;
 
   // The sensor pipeline on a radiance image: exposure × gain, then vignetting, shot and read
@@ -80,7 +80,7 @@ class Simulator {
                  int threads = 0) const;
 
   // RenderRadiance + Expose.
-  cv::Mat RenderCameraImage(const rig::AxisPositions& positions, double exposure_s,
+  cv::Mat RenderCameraImage(const geometry::AxisPositions& positions, double exposure_s,
                             std::uint64_t frame, const RenderOptions& options = {}) const;
 
   // The photo file the scene's sensor writes (sensor.format), from a sensor image.

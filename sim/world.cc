@@ -32,7 +32,7 @@ std::string Degrees(double radians) {
 }  // namespace
 
 SimWorld::SimWorld(Scene scene) : simulator_(std::move(scene)) {
-  for (const rig::RotationAxis& axis : simulator_.scene().rig.axes) axes_[axis.name] = {};
+  for (const geometry::RotationAxis& axis : simulator_.scene().rig.axes) axes_[axis.name] = {};
   for (const SimFault& fault : simulator_.scene().faults) {
     if (fault.type == SimFault::Type::kCameraBusy) busy_left_[fault.at] += fault.count;
   }
@@ -89,7 +89,7 @@ double SimWorld::MoveDuration(const std::string& axis, double distance) const {
 rig::MoveReport SimWorld::MoveAxis(const std::string& axis, double commanded) {
   std::unique_lock lock(mutex_);
   AxisState& state = State(axis);
-  const rig::RotationAxis& geometry = *scene().rig.FindAxis(axis);
+  const geometry::RotationAxis& geometry = *scene().rig.FindAxis(axis);
   if (state.alarm) {
     throw AxisError(AxisError::Kind::kAlarm, state.alarm_code,
                     "axis '" + axis + "' is in alarm; reset it first");
@@ -165,9 +165,9 @@ void SimWorld::ResetAxisAlarm(const std::string& axis) {
   state.alarm_code = 0;
 }
 
-rig::AxisPositions SimWorld::TruePositions() const {
+geometry::AxisPositions SimWorld::TruePositions() const {
   std::lock_guard lock(mutex_);
-  rig::AxisPositions positions;
+  geometry::AxisPositions positions;
   for (const auto& [name, state] : axes_) positions[name] = state.actual;
   return positions;
 }

@@ -12,9 +12,9 @@
 #include <mutex>
 #include <string>
 
+#include "geometry/rig_geometry.h"
 #include "rig/axis.h"
 #include "rig/camera.h"
-#include "rig/geometry.h"
 #include "sim/simulator.h"
 
 namespace brdfrig::sim {
@@ -23,7 +23,7 @@ namespace brdfrig::sim {
 struct ShotTicket {
   int number = 0;  // 1-based shot count (also the noise frame index)
   double exposure_s = 0;
-  rig::AxisPositions true_positions;
+  geometry::AxisPositions true_positions;
   bool light_on = true;
   double exposure_duration_s = 0;
   double download_duration_s = 0;
@@ -45,7 +45,7 @@ class SimWorld {
   rig::AxisStatus AxisStatus(const std::string& axis) const;
   void ResetAxisAlarm(const std::string& axis);
   // Where the arms truly are (commanded position plus mechanical error).
-  rig::AxisPositions TruePositions() const;
+  geometry::AxisPositions TruePositions() const;
 
   // --- camera. Throw rig::CameraError for scheduled faults.
   double SetExposure(double seconds);  // returns the exposure actually used

@@ -10,7 +10,7 @@ namespace {
 
 sim::Scene SmallScene() {
   sim::Scene scene = sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml");
-  rig::Intrinsics& k = scene.rig.intrinsics;
+  geometry::Intrinsics& k = scene.rig.intrinsics;
   const double scale = 320.0 / k.width;
   k = {320,          static_cast<int>(k.height * scale),
        k.fx * scale, k.fy * scale,

@@ -168,8 +168,9 @@ TEST(HardCases, PartlyOccludedCornersStillGiveThePose) {
   CaptureSet capture = SimulateCapture(TempDir("occluded"), spec);
   // A dark object over one corner of the cut-out in every photo.
   Eigen::Vector2d corner;
-  const rig::CameraPose truth = capture.nominal.CameraAt(capture.positions[0].axis_readings);
-  ASSERT_TRUE(rig::ProjectToPixel(capture.nominal.intrinsics, truth, {0.05, 0.05, 0}, &corner));
+  const geometry::CameraPose truth = capture.nominal.CameraAt(capture.positions[0].axis_readings);
+  ASSERT_TRUE(
+      geometry::ProjectToPixel(capture.nominal.intrinsics, truth, {0.05, 0.05, 0}, &corner));
   for (const BracketFrame& frame : capture.positions[0].frames) {
     cv::Mat photo = cv::imread(frame.file.string(), cv::IMREAD_UNCHANGED);
     cv::circle(photo, cv::Point(static_cast<int>(corner.x()), static_cast<int>(corner.y())), 8,

@@ -17,7 +17,7 @@ namespace {
 sim::Scene SmallIdealScene() {
   sim::Scene scene =
       sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml").Ideal();
-  rig::Intrinsics& k = scene.rig.intrinsics;
+  geometry::Intrinsics& k = scene.rig.intrinsics;
   const double scale = 400.0 / k.width;
   k.width = 400;
   k.height = static_cast<int>(std::lround(k.height * scale));
@@ -32,7 +32,7 @@ TEST(CaptureViewTest, RendererMatchesSimulatorRadianceAtEveryCapturePosition) {
   auto context = CreateHeadlessContext();
   const sim::Scene scene = SmallIdealScene();
   const sim::Simulator simulator(scene);
-  for (const rig::AxisPositions& positions : scene.capture.positions) {
+  for (const geometry::AxisPositions& positions : scene.capture.positions) {
     const sim::TrueGeometry truth = simulator.GeometryAt(positions);
     const cv::Mat expected = simulator.RenderRadiance(positions);
     CaptureView capture;

@@ -42,7 +42,8 @@ TEST(DevicesTest, CameraPhotographsWhereTheAxesPutTheArms) {
   const std::vector<rig::Frame> frames = camera.Capture();
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_EQ(frames[0].file_name, "SIM_0001.png");
-  const rig::AxisPositions positions = {{"camera_arm", 25 * kDegree}, {"light_arm", -15 * kDegree}};
+  const geometry::AxisPositions positions = {{"camera_arm", 25 * kDegree},
+                                             {"light_arm", -15 * kDegree}};
   const Simulator& simulator = world->simulator();
   const std::vector<std::byte> expected =
       simulator.EncodePhoto(simulator.RenderCameraImage(positions, 0.01, 1));

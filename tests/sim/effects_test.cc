@@ -19,7 +19,8 @@ using testing::TestScene;
 constexpr double kDegree = M_PI / 180.0;
 constexpr double kExposure = 0.01;
 constexpr std::uint64_t kFrame = 3;
-const rig::AxisPositions kPositions = {{"camera_arm", 10 * kDegree}, {"light_arm", -5 * kDegree}};
+const geometry::AxisPositions kPositions = {{"camera_arm", 10 * kDegree},
+                                            {"light_arm", -5 * kDegree}};
 
 cv::Mat Photo(const Scene& scene, double exposure = kExposure) {
   return Simulator(scene).RenderCameraImage(kPositions, exposure, kFrame);
@@ -175,12 +176,12 @@ TEST(EffectsTest, RadialDistortionTracesRaysThroughTheDistortedLens) {
   int checked = 0;
   for (int v = 0; v < 240; v += 4) {
     for (int u = 0; u < 320; u += 4) {
-      const rig::Vec3 ray = rig::PixelRayInWorld(g.intrinsics, g.camera, {u, v});
-      const rig::Vec3 c = g.camera.CenterInWorld();
-      const rig::Vec3 p = c - c.z() / ray.z() * ray;
+      const geometry::Vec3 ray = geometry::PixelRayInWorld(g.intrinsics, g.camera, {u, v});
+      const geometry::Vec3 c = g.camera.CenterInWorld();
+      const geometry::Vec3 p = c - c.z() / ray.z() * ray;
       const double ax = std::abs(p.x()), ay = std::abs(p.y());
       if (!(ax > 0.052 || ay > 0.042) || ax > 0.148 || ay > 0.148) continue;  // paper only
-      const rig::Vec3 l = rig::Vec3(0.05, 0.1, 0.6) - p;
+      const geometry::Vec3 l = geometry::Vec3(0.05, 0.1, 0.6) - p;
       const double expected = 0.7 / M_PI * 2.0 * (l.z() / l.norm()) / l.squaredNorm();
       ASSERT_NEAR(distorted.at<cv::Vec3f>(v, u)[0], expected, 1e-5 * expected);
       ++checked;
@@ -197,7 +198,8 @@ TEST(EffectsTest, AreaLightSoftensHighlightsAndBarelyChangesDiffusePaper) {
   const Scene point = TestScene("", mirror);
   const Scene area =
       TestScene("effects:\n  - {type: area_light, radius: 0.02, samples: 64}\n", mirror);
-  const rig::AxisPositions positions = {{"camera_arm", 30 * kDegree}, {"light_arm", -20 * kDegree}};
+  const geometry::AxisPositions positions = {{"camera_arm", 30 * kDegree},
+                                             {"light_arm", -20 * kDegree}};
   const cv::Mat a = Simulator(point).RenderRadiance(positions);
   const cv::Mat b = Simulator(area).RenderRadiance(positions);
   cv::Mat ga, gb;

@@ -48,9 +48,9 @@ TEST(SceneTest, DefaultSceneLoadsWithSixHighlightPositions) {
   // Each position mirrors camera and light about the normal: the highlight sits at the
   // cut-out's centre, at incidence angles 15° .. 65°.
   for (std::size_t i = 0; i < scene.capture.positions.size(); ++i) {
-    const rig::Vec3 c = scene.rig.CameraAt(scene.capture.positions[i]).CenterInWorld();
-    const rig::Vec3 l = scene.rig.LightAt(scene.capture.positions[i]);
-    const rig::Vec3 h = (c.normalized() + l.normalized()).normalized();
+    const geometry::Vec3 c = scene.rig.CameraAt(scene.capture.positions[i]).CenterInWorld();
+    const geometry::Vec3 l = scene.rig.LightAt(scene.capture.positions[i]);
+    const geometry::Vec3 h = (c.normalized() + l.normalized()).normalized();
     EXPECT_NEAR(h.z(), 1.0, 1e-9);
     EXPECT_NEAR(std::acos(l.normalized().z()), (15 + 10 * static_cast<double>(i)) * kDegree, 1e-9);
   }
@@ -164,7 +164,7 @@ TEST(SceneTest, FaultsAreCheckedToo) {
 }
 
 TEST(SceneTest, CommandLinePositionsAreDegrees) {
-  const rig::AxisPositions p = ParsePositionsDegrees("camera_arm=15,light_arm=-15.5");
+  const geometry::AxisPositions p = ParsePositionsDegrees("camera_arm=15,light_arm=-15.5");
   EXPECT_NEAR(p.at("camera_arm"), 15 * kDegree, 1e-15);
   EXPECT_NEAR(p.at("light_arm"), -15.5 * kDegree, 1e-15);
   EXPECT_THROW(ParsePositionsDegrees("camera_arm=abc"), Error);
@@ -183,9 +183,9 @@ TEST(SceneTest, SampleCanBeAFittedSliceModelFile) {
   brdf::WriteMaterialFile(dir / "material.json", material);
   const Scene scene =
       LoadSceneString(BaseSceneYaml("{model: slices, file: material.json}"), "scene.yaml", dir);
-  const rig::Vec3 n = rig::Vec3::UnitZ();
-  const rig::Vec3 l = rig::Vec3(std::sin(0.3), 0, std::cos(0.3));
-  const rig::Vec3 mirror(-l.x(), 0, l.z());
+  const geometry::Vec3 n = geometry::Vec3::UnitZ();
+  const geometry::Vec3 l = geometry::Vec3(std::sin(0.3), 0, std::cos(0.3));
+  const geometry::Vec3 mirror(-l.x(), 0, l.z());
   EXPECT_NEAR(scene.sample.brdf->Eval(l, mirror, n)[0], material.Model().Eval(l, mirror, n)[0],
               1e-12);
   std::filesystem::remove_all(dir);

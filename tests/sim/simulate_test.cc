@@ -68,7 +68,7 @@ TEST_F(SimulateTest, WritesABracketedCaptureWithTruthApart) {
 
   // The photo is what the simulator renders at the true position for that shot (frame 4).
   const Simulator simulator(LoadScene(options.scene));
-  const rig::AxisPositions p1 = {{"camera_arm", 40 * kDegree}, {"light_arm", -40 * kDegree}};
+  const geometry::AxisPositions p1 = {{"camera_arm", 40 * kDegree}, {"light_arm", -40 * kDegree}};
   const std::string photo = ReadFileToString(dir_ / "out/photos/p01_e1.png");
   const std::vector<std::byte> expected =
       simulator.EncodePhoto(simulator.RenderCameraImage(p1, 0.01, 4));

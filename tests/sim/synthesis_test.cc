@@ -20,18 +20,18 @@ constexpr double kDegree = M_PI / 180.0;
 
 // World point seen by pixel (u, v) of the test scene's camera at rest (derived by hand, not
 // with rig code): straight down from 0.5 m, f = 400 px, principal point (160, 120).
-rig::Vec3 PointAtRest(double u, double v) {
+geometry::Vec3 PointAtRest(double u, double v) {
   return {(u - 160.0) / 400.0 * 0.5, -(v - 120.0) / 400.0 * 0.5, 0.0};
 }
 
-double LambertRadiance(double albedo, const rig::Vec3& light, double intensity,
-                       const rig::Vec3& p) {
-  const rig::Vec3 to_light = light - p;
+double LambertRadiance(double albedo, const geometry::Vec3& light, double intensity,
+                       const geometry::Vec3& p) {
+  const geometry::Vec3 to_light = light - p;
   const double d = to_light.norm();
   return albedo / M_PI * intensity * (to_light.z() / d) / (d * d);
 }
 
-bool OnPaper(const rig::Vec3& p, double margin) {
+bool OnPaper(const geometry::Vec3& p, double margin) {
   const double ax = std::abs(p.x()), ay = std::abs(p.y());
   const bool in_cutout = ax < 0.05 + margin && ay < 0.04 + margin;
   return !in_cutout && ax < 0.15 - margin && ay < 0.15 - margin;
@@ -40,11 +40,11 @@ bool OnPaper(const rig::Vec3& p, double margin) {
 TEST(SynthesisTest, LambertianPaperMatchesClosedFormEverywhere) {
   const Simulator simulator(TestScene());
   const cv::Mat radiance = simulator.RenderRadiance({});
-  const rig::Vec3 light(0.05, 0.1, 0.6);
+  const geometry::Vec3 light(0.05, 0.1, 0.6);
   int checked = 0;
   for (int v = 0; v < radiance.rows; ++v) {
     for (int u = 0; u < radiance.cols; ++u) {
-      const rig::Vec3 p = PointAtRest(u, v);
+      const geometry::Vec3 p = PointAtRest(u, v);
       if (!OnPaper(p, 0.002)) continue;
       const double expected = LambertRadiance(0.7, light, 2.0, p);
       const cv::Vec3f px = radiance.at<cv::Vec3f>(v, u);
@@ -80,15 +80,18 @@ TEST(SynthesisTest, BackgroundTableIsLambertianWithItsOwnAlbedo) {
 TEST(SynthesisTest, HighlightLandsWhereTheLawOfReflectionPutsIt) {
   // A near-mirror sample: the brightest pixel is the mirror point of camera and light.
   const Simulator simulator(TestScene("", "{model: ggx, alpha: 0.02, f0: 1.0}"));
-  const rig::AxisPositions positions = {{"camera_arm", 30 * kDegree}, {"light_arm", -20 * kDegree}};
+  const geometry::AxisPositions positions = {{"camera_arm", 30 * kDegree},
+                                             {"light_arm", -20 * kDegree}};
   const TrueGeometry g = simulator.GeometryAt(positions);
-  const rig::Vec3 c = g.camera.CenterInWorld();
-  const rig::Vec3 mirrored_light(g.light_position.x(), g.light_position.y(), -g.light_position.z());
-  const rig::Vec3 mirror_point = c + c.z() / (c.z() + g.light_position.z()) * (mirrored_light - c);
+  const geometry::Vec3 c = g.camera.CenterInWorld();
+  const geometry::Vec3 mirrored_light(g.light_position.x(), g.light_position.y(),
+                                      -g.light_position.z());
+  const geometry::Vec3 mirror_point =
+      c + c.z() / (c.z() + g.light_position.z()) * (mirrored_light - c);
   ASSERT_LT(std::abs(mirror_point.x()), 0.05);
   ASSERT_LT(std::abs(mirror_point.y()), 0.04);
   Eigen::Vector2d expected;
-  ASSERT_TRUE(rig::ProjectToPixel(g.intrinsics, g.camera, mirror_point, &expected));
+  ASSERT_TRUE(geometry::ProjectToPixel(g.intrinsics, g.camera, mirror_point, &expected));
 
   const cv::Mat radiance = simulator.RenderRadiance(positions);
   cv::Mat green;
@@ -135,7 +138,7 @@ TEST(SynthesisTest, SameSeedGivesIdenticalBytesWhateverTheThreadCount) {
   RenderOptions one, three;
   one.threads = 1;
   three.threads = 3;
-  const rig::AxisPositions positions = {{"camera_arm", 10 * kDegree}};
+  const geometry::AxisPositions positions = {{"camera_arm", 10 * kDegree}};
   const cv::Mat a = simulator.RenderCameraImage(positions, 0.01, 5, one);
   const cv::Mat b = simulator.RenderCameraImage(positions, 0.01, 5, three);
   EXPECT_EQ(simulator.EncodePhoto(a), simulator.EncodePhoto(b));
@@ -193,7 +196,7 @@ TEST(SynthesisTest, SensorFormatChoosesTiff16OrJpeg8) {
 
 TEST(SynthesisTest, TruthFilesHoldRadianceAndGeometry) {
   const Simulator simulator(TestScene());
-  const rig::AxisPositions positions = {{"camera_arm", 20 * kDegree}};
+  const geometry::AxisPositions positions = {{"camera_arm", 20 * kDegree}};
   const cv::Mat radiance = simulator.RenderRadiance(positions);
   const auto dir = std::filesystem::temp_directory_path() / "brdfrig_sim_truth_test";
   std::filesystem::create_directories(dir);
@@ -204,7 +207,7 @@ TEST(SynthesisTest, TruthFilesHoldRadianceAndGeometry) {
   std::ifstream in(dir / "g.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_NEAR(j["axis_positions_rad"]["camera_arm"].get<double>(), 20 * kDegree, 1e-12);
-  const rig::Vec3 center = simulator.GeometryAt(positions).camera.CenterInWorld();
+  const geometry::Vec3 center = simulator.GeometryAt(positions).camera.CenterInWorld();
   EXPECT_NEAR(j["camera_center_in_world"][1].get<double>(), center.y(), 1e-12);
   EXPECT_NEAR(center.y(), -0.5 * std::sin(20 * kDegree), 1e-12);
   EXPECT_EQ(j["intrinsics"]["width"].get<int>(), 320);

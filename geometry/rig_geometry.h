@@ -16,7 +16,7 @@
 
 #include "common/yaml_reader.h"
 
-namespace brdfrig::rig {
+namespace brdfrig::geometry {
 
 using Vec3 = Eigen::Vector3d;
 using AxisPositions = std::map<std::string, double>;  // axis name -> angle (radians)
@@ -84,4 +84,4 @@ bool ProjectToPixel(const Intrinsics& k, const CameraPose& pose, const Vec3& x_i
 // Unit ray direction in world space through a pixel (undistorted first), and the camera centre.
 Vec3 PixelRayInWorld(const Intrinsics& k, const CameraPose& pose, const Eigen::Vector2d& pixel);
 
-}  // namespace brdfrig::rig
+}  // namespace brdfrig::geometry

@@ -1,9 +1,9 @@
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace brdfrig::rig {
+namespace brdfrig::geometry {
 namespace {
 
 constexpr char kRig[] = R"(geometry:
@@ -108,4 +108,4 @@ TEST(RigGeometryTest, BadValuesPointAtFileAndLine) {
 }
 
 }  // namespace
-}  // namespace brdfrig::rig
+}  // namespace brdfrig::geometry

@@ -1,10 +1,10 @@
-#include "rig/geometry.h"
+#include "geometry/rig_geometry.h"
 
 #include <cmath>
 #include <sstream>
 #include <tuple>
 
-namespace brdfrig::rig {
+namespace brdfrig::geometry {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
@@ -242,4 +242,4 @@ Vec3 PixelRayInWorld(const Intrinsics& k, const CameraPose& pose, const Eigen::V
   return pose.camera_from_world.linear().transpose() * ray_in_camera;
 }
 
-}  // namespace brdfrig::rig
+}  // namespace brdfrig::geometry
