@@ -37,7 +37,7 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
   CaptureSummary summary;
   const fs::path dir = SessionDir(options.output_dir);
   summary.session_dir = dir;
-  const rig::RigDescription description = rig::ReadRigDescription(options.rig_file);
+  const geometry::RigDescription description = rig::ReadRigDescription(options.rig_file);
   std::unique_ptr<SessionStore> store;
   Plan plan;
   if (options.resume && fs::exists(dir)) {

@@ -70,7 +70,7 @@ double EstimateMoveS(double distance, const TimingAssumptions& timing) {
   return d / v + v / a;
 }
 
-PlanCheckReport CheckPlan(const Plan& plan, const rig::RigDescription& rig,
+PlanCheckReport CheckPlan(const Plan& plan, const geometry::RigDescription& rig,
                           const TimingAssumptions& timing) {
   PlanCheckReport report;
   const geometry::RigGeometry& g = rig.geometry;

@@ -46,7 +46,7 @@ struct PlanCheckReport {
 // Estimated time of one axis move (trapezoidal velocity profile).
 double EstimateMoveS(double distance, const TimingAssumptions& timing);
 
-PlanCheckReport CheckPlan(const Plan& plan, const rig::RigDescription& rig,
+PlanCheckReport CheckPlan(const Plan& plan, const geometry::RigDescription& rig,
                           const TimingAssumptions& timing = {});
 
 }  // namespace brdfrig::acquire

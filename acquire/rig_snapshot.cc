@@ -48,7 +48,7 @@ std::string SnapshotName(SqliteDb& db, const std::string& role) {
 }  // namespace
 
 std::vector<SnapshotFile> WriteRigSnapshot(const fs::path& session_dir,
-                                           const rig::RigDescription& rig) {
+                                           const geometry::RigDescription& rig) {
   std::vector<SnapshotFile> files;
   std::set<std::string> seen;
   auto add = [&](const fs::path& original, const std::string& role, std::string name) {
@@ -78,10 +78,10 @@ std::vector<SnapshotFile> WriteRigSnapshot(const fs::path& session_dir,
   return files;
 }
 
-rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
+geometry::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
   const fs::path rig_dir = session_dir / "rig";
   const fs::path rig_file = rig_dir / "rig.yaml";
-  rig::RigDescription description;
+  geometry::RigDescription description;
   description.file = rig_file;
   description.source_files.push_back(rig_file);
   const YamlNode root = LoadYamlFile(rig_file.string());
@@ -103,7 +103,7 @@ rig::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
 }
 
 std::vector<std::string> RigChangesSince(const fs::path& session_dir,
-                                         const rig::RigDescription& rig) {
+                                         const geometry::RigDescription& rig) {
   std::vector<std::string> changes;
   SqliteDb db(session_dir / "session.sqlite", SqliteDb::Mode::kReadOnly);
   auto compare = [&](const fs::path& live, const std::string& role) {

@@ -22,15 +22,15 @@ struct SnapshotFile {
 // Copies the files into <session_dir>/rig/ (durably) and returns what it copied, for the
 // catalog's snapshot_files table. The rig file is always rig/rig.yaml.
 std::vector<SnapshotFile> WriteRigSnapshot(const std::filesystem::path& session_dir,
-                                           const rig::RigDescription& rig);
+                                           const geometry::RigDescription& rig);
 
 // The rig description saved in a session (geometry parsed from the snapshot). Throws
 // brdfrig::Error / FileError when the snapshot is missing or malformed.
-rig::RigDescription ReadRigSnapshot(const std::filesystem::path& session_dir);
+geometry::RigDescription ReadRigSnapshot(const std::filesystem::path& session_dir);
 
 // Which of the live rig's files (rig file, geometry file) differ from the session's snapshot:
 // one line per changed file; empty when none did.
 std::vector<std::string> RigChangesSince(const std::filesystem::path& session_dir,
-                                         const rig::RigDescription& rig);
+                                         const geometry::RigDescription& rig);
 
 }  // namespace brdfrig::acquire

@@ -41,7 +41,7 @@ struct SessionContents {
   // Requested exposures (s) per position: the plan's explicit bracket, or for auto-bracketing
   // the exposures chosen by metering (empty for a position not captured yet).
   std::vector<std::vector<double>> planned_brackets;
-  rig::RigDescription rig;  // from the snapshot in <dir>/rig/
+  geometry::RigDescription rig;  // from the snapshot in <dir>/rig/
   // Recorded frames ordered by position, bracket, file. A session that is not Complete() may
   // also hold frames of positions its last run left incomplete (a resume discards and redoes
   // them); use only positions whose bracket is all there.

@@ -122,7 +122,7 @@ SessionStore::~SessionStore() {
 }
 
 std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, const Plan& plan,
-                                                   const rig::RigDescription& rig) {
+                                                   const geometry::RigDescription& rig) {
   ValidateSessionName(final_dir.filename().string());
   const fs::path parent = final_dir.parent_path().empty() ? fs::path(".") : final_dir.parent_path();
   fs::create_directories(parent);

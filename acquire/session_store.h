@@ -57,7 +57,7 @@ class SessionStore {
   // Creates a new session directory (its parent is created if needed). Refuses an existing
   // directory: a session is never overwritten.
   static std::unique_ptr<SessionStore> Create(const std::filesystem::path& dir, const Plan& plan,
-                                              const rig::RigDescription& rig);
+                                              const geometry::RigDescription& rig);
   // Opens an existing session to resume it. Throws when another process has it open.
   static std::unique_ptr<SessionStore> Open(const std::filesystem::path& dir);
 

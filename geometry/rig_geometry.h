@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -70,6 +71,16 @@ struct RigGeometry {
   // `positions` are at 0. Throws brdfrig::Error for an unknown axis or one outside its limits.
   CameraPose CameraAt(const AxisPositions& positions) const;
   Vec3 LightAt(const AxisPositions& positions) const;
+};
+
+// A rig file read without opening any device (rig::ReadRigDescription, or a session's snapshot):
+// enough to check a plan or to reconstruct.
+struct RigDescription {
+  std::filesystem::path file;
+  RigGeometry geometry;
+  // Files a session must copy to be reprocessable on its own: the rig file itself and, when
+  // the geometry lives in another file, that file.
+  std::vector<std::filesystem::path> source_files;
 };
 
 // Parses the geometry section (see docs/rig_geometry.md for the keys). Angles in the file are

@@ -18,10 +18,10 @@ std::string BackendOf(const YamlNode& device) {
 
 }  // namespace
 
-RigDescription ReadRigDescription(const std::filesystem::path& rig_file) {
+geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_file) {
   const YamlNode root = LoadYamlFile(rig_file.string());
   const std::filesystem::path base = rig_file.parent_path();
-  RigDescription description;
+  geometry::RigDescription description;
   description.file = rig_file;
   description.source_files.push_back(rig_file);
 

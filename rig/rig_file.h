@@ -26,17 +26,8 @@
 
 namespace brdfrig::rig {
 
-// A rig file read without opening any device: enough to check a plan or to reconstruct.
-struct RigDescription {
-  std::filesystem::path file;
-  geometry::RigGeometry geometry;
-  // Files a session must copy to be reprocessable on its own: the rig file itself and, when
-  // the geometry lives in another file, that file.
-  std::vector<std::filesystem::path> source_files;
-};
-
 struct Rig {
-  RigDescription description;
+  geometry::RigDescription description;
   std::unique_ptr<Camera> camera;
   std::map<std::string, std::unique_ptr<Axis>> axes;  // by axis name
   std::unique_ptr<Light> light;                       // null when the rig has none
@@ -45,7 +36,7 @@ struct Rig {
 // Reads rig.yaml's geometry and checks the device sections' shape (every device has a
 // `backend`, every axis exists in the geometry) without opening devices; a device's own settings
 // are validated by its backend when it is opened.
-RigDescription ReadRigDescription(const std::filesystem::path& rig_file);
+geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_file);
 
 // Reads rig.yaml and opens every device through the backend registry (backends must have been
 // registered first, e.g. sim::RegisterSimBackends()). Throws FileError for configuration
