@@ -1,11 +1,13 @@
 #include "acquire/capture.h"
 
 #include "acquire/plan_check.h"
-#include "acquire/rig_snapshot.h"
 #include "acquire/session_store.h"
 #include "common/atomic_file.h"
+#include "session/rig_snapshot.h"
 
 namespace brdfrig::acquire {
+
+using session::RigChangesSince;
 
 namespace fs = std::filesystem;
 

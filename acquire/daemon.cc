@@ -8,10 +8,13 @@
 
 #include "acquire/local_socket.h"
 #include "acquire/plan_check.h"
-#include "acquire/session_reader.h"
 #include "acquire/session_store.h"
+#include "session/session_reader.h"
 
 namespace brdfrig::acquire {
+
+using session::ReadSession;
+using session::SessionContents;
 namespace {
 
 namespace fs = std::filesystem;

@@ -10,12 +10,19 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 
-#include "acquire/rig_snapshot.h"
 #include "acquire/test_hooks.h"
 #include "common/atomic_file.h"
 #include "common/sha256.h"
+#include "session/rig_snapshot.h"
 
 namespace brdfrig::acquire {
+
+using session::SnapshotFile;
+using session::SqliteDb;
+using session::Statement;
+using session::Transaction;
+using session::WriteRigSnapshot;
+
 namespace {
 
 namespace fs = std::filesystem;

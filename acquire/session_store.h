@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "acquire/plan.h"
-#include "acquire/sqlite_db.h"
 #include "rig/rig_file.h"
+#include "session/sqlite_db.h"
 
 namespace brdfrig::acquire {
 
@@ -92,11 +92,11 @@ class SessionStore {
                                    const std::string& camera_file_name);
 
  private:
-  SessionStore(std::filesystem::path dir, std::unique_ptr<SqliteDb> db);
+  SessionStore(std::filesystem::path dir, std::unique_ptr<session::SqliteDb> db);
   void DeleteFramesLocked(int position_index);
 
   std::filesystem::path dir_;
-  std::unique_ptr<SqliteDb> db_;
+  std::unique_ptr<session::SqliteDb> db_;
   std::mutex mutex_;
   std::int64_t run_id_ = 0;
   int lock_fd_ = -1;  // flock'ed while this store is open

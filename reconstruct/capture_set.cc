@@ -3,11 +3,11 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "acquire/session_reader.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/yaml_reader.h"
 #include "reconstruct/raw_photo.h"
+#include "session/session_reader.h"
 
 namespace brdfrig::reconstruct {
 
@@ -52,25 +52,25 @@ CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir) {
 }
 
 CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
-  const acquire::SessionContents session = acquire::ReadSession(dir);
+  const session::SessionContents contents = session::ReadSession(dir);
   CaptureSet set;
   set.name = dir.string();
-  set.nominal = session.rig.geometry;
-  if (session.exit_status != "success") {
-    set.warnings.push_back("session " + session.name + " ended '" + session.exit_status + "'" +
-                           (session.stop_reason.empty() ? "" : " (" + session.stop_reason + ")") +
+  set.nominal = contents.rig.geometry;
+  if (contents.exit_status != "success") {
+    set.warnings.push_back("session " + contents.name + " ended '" + contents.exit_status + "'" +
+                           (contents.stop_reason.empty() ? "" : " (" + contents.stop_reason + ")") +
                            ": using its complete positions");
   }
   // One file per (position, bracket): RAW when the camera also wrote a JPEG.
-  std::map<int, std::map<int, const acquire::RecordedFrame*>> shots;
-  for (const acquire::RecordedFrame& frame : session.frames) {
-    const acquire::RecordedFrame*& kept = shots[frame.position_index][frame.bracket_index];
+  std::map<int, std::map<int, const session::RecordedFrame*>> shots;
+  for (const session::RecordedFrame& frame : contents.frames) {
+    const session::RecordedFrame*& kept = shots[frame.position_index][frame.bracket_index];
     if (kept == nullptr || (IsRawPhoto(frame.file) && !IsRawPhoto(kept->file))) kept = &frame;
   }
   for (const auto& [index, bracket] : shots) {
     const std::size_t planned =
-        index < static_cast<int>(session.planned_brackets.size())
-            ? session.planned_brackets[static_cast<std::size_t>(index)].size()
+        index < static_cast<int>(contents.planned_brackets.size())
+            ? contents.planned_brackets[static_cast<std::size_t>(index)].size()
             : 0;
     if (bracket.size() < planned) {
       set.warnings.push_back(
@@ -87,7 +87,7 @@ CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
     set.positions.push_back(std::move(position));
   }
   if (set.positions.empty()) {
-    throw FileError((dir / "session.sqlite").string(), "no complete position recorded");
+    throw FileError((dir / "contents.sqlite").string(), "no complete position recorded");
   }
   return set;
 }

@@ -35,7 +35,7 @@ struct CaptureSet {
 // file, a missing photo or a missing scene.
 CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir);
 
-// Reads an acquisition session (session.sqlite) through acquire::ReadSession, with the nominal
+// Reads an acquisition session (session.sqlite) through session::ReadSession, with the nominal
 // geometry from the session's own rig snapshot. Only positions whose bracket is complete are
 // used (an interrupted session's last position is left out with a warning); where a shot gave
 // RAW + JPEG, the RAW file is used. Throws brdfrig::Error when the session cannot be read.

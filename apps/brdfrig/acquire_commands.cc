@@ -12,8 +12,8 @@
 
 #include "acquire/capture.h"
 #include "acquire/plan_check.h"
-#include "acquire/session_verify.h"
 #include "apps/brdfrig/progress_line.h"
+#include "session/session_verify.h"
 
 namespace brdfrig::apps {
 namespace {
@@ -132,7 +132,7 @@ void RegisterAcquireCommands(CLI::App& app) {
       "verify", "Re-hash every frame; report missing, extra or changed files");
   verify->add_option("dir", *dir, "Session directory")->required();
   verify->callback([dir] {
-    const acquire::VerifyReport report = acquire::VerifySession(*dir);
+    const session::VerifyReport report = session::VerifySession(*dir);
     std::printf("%s", report.ToString().c_str());
     if (!report.ok()) throw Error("session " + *dir + " does not match its catalog");
   });

@@ -14,11 +14,14 @@
 #include <string>
 #include <thread>
 
-#include "acquire/session_reader.h"
+#include "session/session_reader.h"
 #include "tests/acquire/test_rig.h"
 #include "tests/common/run_brdfrig.h"
 
 namespace brdfrig::acquire {
+
+using session::ReadSession;
+using session::SessionContents;
 namespace {
 
 namespace fs = std::filesystem;

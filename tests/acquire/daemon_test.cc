@@ -14,11 +14,15 @@
 
 #include "acquire/daemon_client.h"
 #include "acquire/local_socket.h"
-#include "acquire/session_reader.h"
-#include "acquire/session_verify.h"
+#include "session/session_reader.h"
+#include "session/session_verify.h"
 #include "tests/acquire/test_rig.h"
 
 namespace brdfrig::acquire {
+
+using session::ReadSession;
+using session::SessionContents;
+using session::VerifySession;
 namespace {
 
 namespace fs = std::filesystem;

@@ -8,17 +8,25 @@
 #include <thread>
 
 #include "acquire/capture.h"
-#include "acquire/session_reader.h"
-#include "acquire/session_verify.h"
-#include "acquire/sqlite_db.h"
 #include "acquire/test_hooks.h"
 #include "common/sha256.h"
 #include "rig/drive_profile.h"
 #include "rig/hardware_backends.h"
+#include "session/session_reader.h"
+#include "session/session_verify.h"
+#include "session/sqlite_db.h"
 #include "sim/modbus_drive_server.h"
 #include "tests/acquire/test_rig.h"
 
 namespace brdfrig::acquire {
+
+using session::ReadSession;
+using session::RecordedFrame;
+using session::SessionContents;
+using session::SqliteDb;
+using session::Statement;
+using session::VerifyReport;
+using session::VerifySession;
 namespace {
 
 namespace fs = std::filesystem;

@@ -16,12 +16,18 @@
 #include <set>
 #include <thread>
 
-#include "acquire/session_reader.h"
-#include "acquire/session_verify.h"
 #include "common/sha256.h"
+#include "session/session_reader.h"
+#include "session/session_verify.h"
 #include "tests/acquire/test_rig.h"
 
 namespace brdfrig::acquire {
+
+using session::ReadSession;
+using session::RecordedFrame;
+using session::SessionContents;
+using session::VerifyReport;
+using session::VerifySession;
 namespace {
 
 namespace fs = std::filesystem;

@@ -5,14 +5,20 @@
 #include <fstream>
 
 #include "acquire/capture.h"
-#include "acquire/session_reader.h"
 #include "acquire/session_store.h"
-#include "acquire/session_verify.h"
 #include "common/atomic_file.h"
 #include "common/sha256.h"
+#include "session/session_reader.h"
+#include "session/session_verify.h"
 #include "tests/acquire/test_rig.h"
 
 namespace brdfrig::acquire {
+
+using session::ReadSession;
+using session::RecordedFrame;
+using session::SessionContents;
+using session::VerifyReport;
+using session::VerifySession;
 namespace {
 
 constexpr double kDegree = M_PI / 180;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 
 struct VerifyReport {
   int checked = 0;                            // recorded files hashed
@@ -23,4 +23,4 @@ struct VerifyReport {
 // Throws brdfrig::Error when `dir` is not a session.
 VerifyReport VerifySession(const std::filesystem::path& dir);
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session

@@ -7,11 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "acquire/rig_snapshot.h"  // ReadRigSnapshot
 #include "geometry/rig_geometry.h"
-#include "rig/rig_file.h"
+#include "session/rig_snapshot.h"  // ReadRigSnapshot
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 
 // One recorded file. A shot normally gives one file; a camera giving RAW + JPEG gives two
 // RecordedFrames with the same position and bracket index.
@@ -53,4 +52,4 @@ struct SessionContents {
 // Throws brdfrig::Error when `dir` is not a readable session.
 SessionContents ReadSession(const std::filesystem::path& dir);
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session

@@ -1,14 +1,14 @@
-#include "acquire/rig_snapshot.h"
+#include "session/rig_snapshot.h"
 
 #include <algorithm>
 #include <set>
 
-#include "acquire/sqlite_db.h"
 #include "common/atomic_file.h"
 #include "common/sha256.h"
 #include "common/yaml_reader.h"
+#include "session/sqlite_db.h"
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 namespace {
 
 namespace fs = std::filesystem;
@@ -122,4 +122,4 @@ std::vector<std::string> RigChangesSince(const fs::path& session_dir,
   return changes;
 }
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session

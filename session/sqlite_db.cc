@@ -1,8 +1,8 @@
-#include "acquire/sqlite_db.h"
+#include "session/sqlite_db.h"
 
 #include <sqlite3.h>
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 
 SqliteDb::SqliteDb(const std::filesystem::path& file, Mode mode) : file_(file) {
   int flags = SQLITE_OPEN_FULLMUTEX;
@@ -117,4 +117,4 @@ void Transaction::Commit() {
   done_ = true;
 }
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session

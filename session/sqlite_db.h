@@ -15,7 +15,7 @@
 struct sqlite3;
 struct sqlite3_stmt;
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 
 class SqliteError : public Error {
  public:
@@ -87,4 +87,4 @@ class Transaction {
   bool done_ = false;
 };
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session

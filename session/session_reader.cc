@@ -1,14 +1,14 @@
-#include "acquire/session_reader.h"
+#include "session/session_reader.h"
 
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "acquire/rig_snapshot.h"
-#include "acquire/sqlite_db.h"
 #include "common/yaml_reader.h"
+#include "session/rig_snapshot.h"
+#include "session/sqlite_db.h"
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 namespace {
 
 namespace fs = std::filesystem;
@@ -101,4 +101,4 @@ SessionContents ReadSession(const fs::path& dir) {
   return s;
 }
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "rig/rig_file.h"
+#include "geometry/rig_geometry.h"
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 
 struct SnapshotFile {
   std::string name;  // file name under <session>/rig/
@@ -33,4 +33,4 @@ geometry::RigDescription ReadRigSnapshot(const std::filesystem::path& session_di
 std::vector<std::string> RigChangesSince(const std::filesystem::path& session_dir,
                                          const geometry::RigDescription& rig);
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session

@@ -1,12 +1,12 @@
-#include "acquire/session_verify.h"
+#include "session/session_verify.h"
 
 #include <set>
 #include <sstream>
 
-#include "acquire/sqlite_db.h"
 #include "common/sha256.h"
+#include "session/sqlite_db.h"
 
-namespace brdfrig::acquire {
+namespace brdfrig::session {
 
 namespace fs = std::filesystem;
 
@@ -63,4 +63,4 @@ std::string VerifyReport::ToString() const {
   return out.str();
 }
 
-}  // namespace brdfrig::acquire
+}  // namespace brdfrig::session
