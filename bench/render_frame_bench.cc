@@ -8,6 +8,8 @@
 #include "brdf/analytic.h"
 #include "brdf/merl.h"
 #include "brdf/slice_model.h"
+#include "common/angles.h"
+#include "geometry/camera.h"
 #include "render/gl_context.h"
 #include "render/renderer.h"
 
@@ -19,7 +21,7 @@ brdf::SliceModel SixSlices() {
   std::vector<brdf::Slice> slices;
   for (int k = 0; k < 6; ++k) {
     brdf::Slice s;
-    s.theta_in = (15 + 10 * k) * M_PI / 180;
+    s.theta_in = Radians(15 + 10 * k);
     for (auto& c : s.channel) c = {20.0 + 5 * k, 0.1, 0.03, 0.06};
     slices.push_back(s);
   }
@@ -29,13 +31,7 @@ brdf::SliceModel SixSlices() {
 render::View MakeView() {
   render::View view;
   view.intrinsics = {1280, 720, 1100, 1100, 640, 360};
-  const Eigen::Vector3d eye(0.0, -0.17, 0.12), target(0, 0, 0), up(0, 0, 1);
-  const Eigen::Vector3d z = (target - eye).normalized(), x = z.cross(up).normalized(),
-                        y = z.cross(x);
-  Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
-  world_from_camera.linear() << x, y, z;
-  world_from_camera.translation() = eye;
-  view.pose.camera_from_world = world_from_camera.inverse();
+  view.pose = geometry::LookAt({0.0, -0.17, 0.12}, {0, 0, 0}, {0, 0, 1});
   return view;
 }
 

@@ -4,10 +4,10 @@
 #include <sstream>
 #include <tuple>
 
+#include "common/angles.h"
+
 namespace brdfrig::geometry {
 namespace {
-
-constexpr double kDegree = M_PI / 180.0;
 
 Vec3 ReadVec3(const YamlNode& node) {
   const std::vector<double> v = node.AsDoubles();
@@ -74,8 +74,8 @@ RotationAxis ParseAxis(const YamlNode& node) {
   if (auto range = node.Optional("range_deg")) {
     const auto [lo, hi] = ReadPair(*range);
     if (!(lo < hi)) range->Fail("expected [min, max] with min < max");
-    axis.min = lo * kDegree;
-    axis.max = hi * kDegree;
+    axis.min = Radians(lo);
+    axis.max = Radians(hi);
   }
   node.Finish();
   return axis;
@@ -113,8 +113,8 @@ double AngleOf(const RotationAxis& axis, const AxisPositions& positions) {
   const double angle = it == positions.end() ? 0.0 : it->second;
   if (!std::isfinite(angle) || angle < axis.min - 1e-9 || angle > axis.max + 1e-9) {
     std::ostringstream msg;
-    msg << "axis '" << axis.name << "': " << angle / kDegree << "° is outside its range ["
-        << axis.min / kDegree << "°, " << axis.max / kDegree << "°]";
+    msg << "axis '" << axis.name << "': " << Degrees(angle) << "° is outside its range ["
+        << Degrees(axis.min) << "°, " << Degrees(axis.max) << "°]";
     throw Error(msg.str());
   }
   return angle;
@@ -163,15 +163,9 @@ const RotationAxis* RigGeometry::FindAxis(const std::string& name) const {
 }
 
 CameraPose RigGeometry::CameraAt(const AxisPositions& positions) const {
-  const Vec3 z = (camera_look_at - camera_position).normalized();
-  const Vec3 x = z.cross(camera_up).normalized();
-  const Vec3 y = z.cross(x);
-  Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
-  world_from_camera.linear().col(0) = x;
-  world_from_camera.linear().col(1) = y;
-  world_from_camera.linear().col(2) = z;
-  world_from_camera.translation() = camera_position;
-  world_from_camera = Motions(*this, positions).first * world_from_camera;
+  const Eigen::Isometry3d world_from_camera =
+      Motions(*this, positions).first *
+      WorldFromCameraLookingAt(camera_position, camera_look_at, camera_up);
   CameraPose pose;
   pose.camera_from_world = world_from_camera.inverse();
   return pose;
@@ -211,35 +205,6 @@ RigGeometry ParseRigGeometry(const YamlNode& node) {
   if (auto target = node.Optional("target")) rig.target = ParseTarget(*target);
   node.Finish();
   return rig;
-}
-
-bool ProjectToPixel(const Intrinsics& k, const CameraPose& pose, const Vec3& x_in_world,
-                    Eigen::Vector2d* pixel) {
-  const Vec3 x = pose.camera_from_world * x_in_world;
-  if (x.z() <= 0) return false;
-  const double xn = x.x() / x.z();
-  const double yn = x.y() / x.z();
-  const double r2 = xn * xn + yn * yn;
-  const double d = 1 + k.k1 * r2 + k.k2 * r2 * r2;
-  *pixel = {k.fx * xn * d + k.cx, k.fy * yn * d + k.cy};
-  return true;
-}
-
-Vec3 PixelRayInWorld(const Intrinsics& k, const CameraPose& pose, const Eigen::Vector2d& pixel) {
-  const double xd = (pixel.x() - k.cx) / k.fx;
-  const double yd = (pixel.y() - k.cy) / k.fy;
-  // Invert the radial model by fixed-point iteration (converges for realistic distortion).
-  double xn = xd, yn = yd;
-  if (k.k1 != 0 || k.k2 != 0) {
-    for (int i = 0; i < 20; ++i) {
-      const double r2 = xn * xn + yn * yn;
-      const double d = 1 + k.k1 * r2 + k.k2 * r2 * r2;
-      xn = xd / d;
-      yn = yd / d;
-    }
-  }
-  const Vec3 ray_in_camera = Vec3(xn, yn, 1).normalized();
-  return pose.camera_from_world.linear().transpose() * ray_in_camera;
 }
 
 }  // namespace brdfrig::geometry

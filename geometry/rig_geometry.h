@@ -8,33 +8,17 @@
 // the same pivot, so the sample plane stays z = 0.
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "common/yaml_reader.h"
+#include "geometry/camera.h"
 
 namespace brdfrig::geometry {
 
-using Vec3 = Eigen::Vector3d;
 using AxisPositions = std::map<std::string, double>;  // axis name -> angle (radians)
-
-// Pinhole camera with radial distortion (OpenCV convention: x right, y down, z forward).
-struct Intrinsics {
-  int width = 0, height = 0;  // pixels
-  double fx = 0, fy = 0;      // focal length in pixels
-  double cx = 0, cy = 0;      // principal point in pixels
-  double k1 = 0, k2 = 0;      // radial distortion (OpenCV model); 0 = none
-};
-
-// A rigid transform x_in_camera = camera_from_world * x_in_world.
-struct CameraPose {
-  Eigen::Isometry3d camera_from_world = Eigen::Isometry3d::Identity();
-  Vec3 CenterInWorld() const { return camera_from_world.inverse().translation(); }
-};
 
 struct RotationAxis {
   std::string name;
@@ -83,16 +67,8 @@ struct RigDescription {
   std::vector<std::filesystem::path> source_files;
 };
 
-// Parses the geometry section (see docs/rig_geometry.md for the keys). Angles in the file are
+// Parses the geometry section (keys: docs/rig_geometry.md). Angles in the file are
 // in degrees (the only place degrees are accepted); they are radians everywhere in code.
 RigGeometry ParseRigGeometry(const YamlNode& node);
-
-// Projects a world point to pixel coordinates (with distortion). Returns false when the point is
-// behind the camera.
-bool ProjectToPixel(const Intrinsics& k, const CameraPose& pose, const Vec3& x_in_world,
-                    Eigen::Vector2d* pixel);
-
-// Unit ray direction in world space through a pixel (undistorted first), and the camera centre.
-Vec3 PixelRayInWorld(const Intrinsics& k, const CameraPose& pose, const Eigen::Vector2d& pixel);
 
 }  // namespace brdfrig::geometry

@@ -5,7 +5,7 @@
 
 #include <optional>
 
-#include "geometry/rig_geometry.h"
+#include "geometry/camera.h"
 
 namespace brdfrig::reconstruct {
 

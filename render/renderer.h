@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "brdf/brdf.h"
-#include "geometry/rig_geometry.h"
+#include "geometry/camera.h"
 #include "render/gpu_material.h"
 #include "render/mesh.h"
 

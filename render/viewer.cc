@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/error.h"
+#include "geometry/camera.h"
 #include "render/capture_view.h"
 #include "render/gl_context.h"
 #include "render/renderer.h"
@@ -36,12 +37,7 @@ View OrbitView(const ViewerState& s, int width, int height) {
   const Eigen::Vector3d eye =
       s.distance * Eigen::Vector3d(std::cos(s.pitch) * std::sin(s.yaw),
                                    -std::cos(s.pitch) * std::cos(s.yaw), std::sin(s.pitch));
-  const Eigen::Vector3d z = (-eye).normalized(), x = z.cross(Eigen::Vector3d::UnitZ()).normalized(),
-                        y = z.cross(x);
-  Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
-  world_from_camera.linear() << x, y, z;
-  world_from_camera.translation() = eye;
-  view.pose.camera_from_world = world_from_camera.inverse();
+  view.pose = geometry::LookAt(eye, geometry::Vec3::Zero(), geometry::Vec3::UnitZ());
   return view;
 }
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 
-#include "geometry/rig_geometry.h"
+#include "geometry/camera.h"
 #include "sim/scene.h"
 
 namespace brdfrig::sim {
