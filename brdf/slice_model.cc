@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>  // cross()
 
+#include "brdf/logistic.h"
 #include "common/error.h"
 
 namespace brdfrig::brdf {
@@ -79,15 +80,7 @@ SliceAngles ComputeSliceAngles(const Vec3& l, const Vec3& v, const Vec3& n) {
 
 double EvalLobe(const LobeParams& p, double theta) {
   const double t = (theta - p.x0) / p.h;
-  // Logistic 1/(1+e^t) without ever evaluating exp of a large positive number.
-  double s;
-  if (t >= 0) {
-    const double e = std::exp(-t);
-    s = e / (1 + e);
-  } else {
-    s = 1 / (1 + std::exp(t));
-  }
-  return p.a2 + (p.a1 - p.a2) * s;
+  return p.a2 + (p.a1 - p.a2) * Logistic(-t);
 }
 
 SliceModel::SliceModel(std::vector<Slice> slices) : slices_(std::move(slices)) {

@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "brdf/logistic.h"
 #include "common/error.h"
+#include "common/option_check.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -38,7 +40,7 @@ struct LightLobeResidual {
     for (int c = 0; c < 3; ++c) {
       const T* p = params[c];
       const T z = (theta - p[3]) / exp(p[2]);
-      const T sigma = z >= T(0) ? exp(-z) / (T(1) + exp(-z)) : T(1) / (T(1) + exp(z));
+      const T sigma = brdf::Logistic(-z);
       const T m = exp(p[0]) + exp(p[1]) * sigma;
       residual[c] = log(m) - T(pixel->log_value[c]) + log_e;
     }
@@ -49,9 +51,9 @@ struct LightLobeResidual {
 }  // namespace
 
 void LightRefineOptions::Validate() const {
-  if (max_pixels < 100) throw OptionsError("LightRefineOptions.max_pixels must be >= 100");
-  if (max_iterations < 1) throw OptionsError("LightRefineOptions.max_iterations must be >= 1");
-  if (!(max_shift_rad > 0)) throw OptionsError("LightRefineOptions.max_shift_rad must be > 0");
+  CheckOption(max_pixels >= 100, "LightRefineOptions.max_pixels", max_pixels, ">= 100");
+  CheckOption(max_iterations >= 1, "LightRefineOptions.max_iterations", max_iterations, ">= 1");
+  CheckOption(max_shift_rad > 0, "LightRefineOptions.max_shift_rad", max_shift_rad, "> 0");
 }
 
 LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
