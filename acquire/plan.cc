@@ -2,12 +2,11 @@
 
 #include <cmath>
 
+#include "common/angles.h"
 #include "common/atomic_file.h"
 
 namespace brdfrig::acquire {
 namespace {
-
-constexpr double kDegree = M_PI / 180.0;
 
 std::vector<PlannedPosition> ParseExplicitPositions(const YamlNode& list) {
   std::vector<PlannedPosition> positions;
@@ -16,7 +15,7 @@ std::vector<PlannedPosition> ParseExplicitPositions(const YamlNode& list) {
     PlannedPosition position;
     position.line = item.line();
     for (const std::string& axis : item.Keys()) {
-      position.axes[axis] = item.Required(axis).AsDouble() * kDegree;
+      position.axes[axis] = Radians(item.Required(axis).AsDouble());
     }
     if (position.axes.empty()) item.Fail("a position needs at least one axis angle");
     positions.push_back(std::move(position));
@@ -42,8 +41,8 @@ std::vector<PlannedPosition> ParseSymmetricArms(const YamlNode& preset) {
     position.line = preset.line();
     // Camera at θ on one side of the normal, light at θ on the other: the mirror
     // configuration, so the highlight sits at the sample centre.
-    position.axes[camera] = theta * kDegree;
-    position.axes[light] = -theta * kDegree;
+    position.axes[camera] = Radians(theta);
+    position.axes[light] = -Radians(theta);
     positions.push_back(std::move(position));
   }
   return positions;

@@ -5,16 +5,16 @@
 #include <cstdio>
 #include <sstream>
 
+#include "common/angles.h"
+
 namespace brdfrig::acquire {
 namespace {
-
-constexpr double kDegree = M_PI / 180.0;
 
 std::string At(const Plan& plan, int line) { return plan.file + ":" + std::to_string(line) + ": "; }
 
 std::string Deg(double radians) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.1f°", radians / kDegree);
+  std::snprintf(text, sizeof text, "%.1f°", Degrees(radians));
   return text;
 }
 
@@ -50,7 +50,7 @@ void CheckHighlight(const geometry::RigGeometry& g, const geometry::AxisPosition
   }
   c->highlight_visible = in_cutout && projects;
   // The angle from the mirror direction grows towards the cut-out's corners: its largest value
-  // tells how far from the lobe peak this photo reaches (DESIGN.md, capture geometry).
+  // tells how far from the lobe peak this photo reaches (docs/design.md, capture geometry).
   for (const double sx : {-0.5, 0.5}) {
     for (const double sy : {-0.5, 0.5}) {
       const geometry::Vec3 x(sx * g.target.cutout_width, sy * g.target.cutout_height, 0);
@@ -136,7 +136,7 @@ std::string PlanCheckReport::ToString() const {
     std::snprintf(
         row, sizeof row, "%8d  %4d  %-9s  %-9s  (%6.0f, %6.0f)  %7.1f°  %8.1f°  %5.1f s\n", c.index,
         c.line, c.reachable ? "yes" : "NO", c.highlight_visible ? "visible" : "NOT SEEN",
-        c.highlight_u, c.highlight_v, c.theta_in / kDegree, c.theta_max / kDegree, c.move_s);
+        c.highlight_u, c.highlight_v, Degrees(c.theta_in), Degrees(c.theta_max), c.move_s);
     out << row;
   }
   std::snprintf(row, sizeof row,

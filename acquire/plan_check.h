@@ -8,17 +8,18 @@
 #include <vector>
 
 #include "acquire/plan.h"
+#include "common/angles.h"
 #include "rig/rig_file.h"
 
 namespace brdfrig::acquire {
 
 // Device timings assumed by the estimate (a real rig's drives and camera are not asked).
 struct TimingAssumptions {
-  double axis_speed = 20 * M_PI / 180;         // rad/s
-  double axis_acceleration = 40 * M_PI / 180;  // rad/s²
-  double shot_overhead_s = 0.3;                // shutter lag etc. beyond the exposure
-  double download_s = 1.2;                     // per frame
-  double metering_s = 0.5;                     // an auto-bracketing metering shot, without download
+  double axis_speed = Radians(20);         // rad/s
+  double axis_acceleration = Radians(40);  // rad/s²
+  double shot_overhead_s = 0.3;            // shutter lag etc. beyond the exposure
+  double download_s = 1.2;                 // per frame
+  double metering_s = 0.5;                 // an auto-bracketing metering shot, without download
 };
 
 struct PositionCheck {

@@ -10,6 +10,7 @@
 
 #include "acquire/capture.h"
 #include "acquire/plan_check.h"
+#include "common/angles.h"
 #include "sim/devices.h"
 #include "sim/scene.h"
 
@@ -25,7 +26,7 @@ std::string PlanFromScene(const sim::Scene& scene) {
     plan << "  - {";
     bool first = true;
     for (const auto& [axis, angle] : p) {
-      plan << (first ? "" : ", ") << axis << ": " << angle * 180 / M_PI;
+      plan << (first ? "" : ", ") << axis << ": " << Degrees(angle);
       first = false;
     }
     plan << "}\n";

@@ -7,6 +7,7 @@
 
 #include "brdf/analytic.h"
 #include "brdf/slice_model.h"
+#include "common/angles.h"
 
 namespace brdfrig::brdf {
 namespace {
@@ -34,7 +35,7 @@ SliceModel SixSlices() {
   std::vector<Slice> slices;
   for (int k = 0; k < 6; ++k) {
     Slice s;
-    s.theta_in = (15 + 10 * k) * M_PI / 180;
+    s.theta_in = Radians(15 + 10 * k);
     for (auto& c : s.channel) c = {20.0 + 5 * k, 0.1, 0.03, 0.06};
     slices.push_back(s);
   }

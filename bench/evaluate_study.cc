@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "evaluate/report.h"
@@ -50,7 +51,7 @@ void PhotoCount(int width, int height, const std::filesystem::path& out) {
     const evaluate::StudyResult r = evaluate::RunStudyPoint(s);
     if (!header) {
       std::printf("| photos |");
-      for (const auto& v : r.views) std::printf(" phi %3.0f |", v.view.phi * 180 / M_PI);
+      for (const auto& v : r.views) std::printf(" phi %3.0f |", Degrees(v.view.phi));
       std::printf(" mean | BRDF err | capture (s) | reconstruct (s) |\n|---|");
       for (std::size_t i = 0; i < r.views.size() + 4; ++i) std::printf("---|");
       std::printf("\n");
@@ -62,9 +63,9 @@ void PhotoCount(int width, int height, const std::filesystem::path& out) {
     for (const auto& v : r.views) {
       std::printf(" %s / %s |", Fixed(v.whole_photo.psnr_db, 1).c_str(),
                   Fixed(v.sample_only.psnr_db, 1).c_str());
-      w.x.push_back(v.view.phi * 180 / M_PI);
+      w.x.push_back(Degrees(v.view.phi));
       w.y.push_back(v.whole_photo.psnr_db);
-      p.x.push_back(v.view.phi * 180 / M_PI);
+      p.x.push_back(Degrees(v.view.phi));
       p.y.push_back(v.sample_only.psnr_db);
     }
     std::printf(" %s / %s | %s | %s | %s |\n", Fixed(r.mean_psnr_whole, 1).c_str(),

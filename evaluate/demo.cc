@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "acquire/capture.h"
+#include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "evaluate/held_out.h"
@@ -17,7 +18,6 @@ namespace brdfrig::evaluate {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = M_PI / 180;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -39,7 +39,7 @@ std::string PlanYaml(const sim::Scene& scene) {
   for (const geometry::AxisPositions& position : scene.capture.positions) {
     std::string entry;
     for (const auto& [axis, angle] : position) {
-      entry += (entry.empty() ? "" : ", ") + axis + ": " + Fixed(angle / kDeg, 6);
+      entry += (entry.empty() ? "" : ", ") + axis + ": " + Fixed(Degrees(angle), 6);
     }
     yaml += "  - {" + entry + "}\n";
   }
@@ -115,11 +115,11 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   say("[3/4] rendering " + std::to_string(options.view_phis_deg.size()) + " held-out views");
   start = std::chrono::steady_clock::now();
   std::vector<double> phis;
-  for (double d : options.view_phis_deg) phis.push_back(d * kDeg);
+  for (double d : options.view_phis_deg) phis.push_back(Radians(d));
   HeldOutOptions held_out_options;
   held_out_options.keep_images = true;
   const std::vector<HeldOutResult> views = EvaluateHeldOut(
-      scene, fitted, OrientationViews(options.view_elevation_deg * kDeg, phis), held_out_options);
+      scene, fitted, OrientationViews(Radians(options.view_elevation_deg), phis), held_out_options);
   const double evaluate_s = SecondsSince(start);
 
   // 4. BRDF-space error and energy.
@@ -152,11 +152,11 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
       positions.rows.push_back({std::to_string(p.index), "skipped: " + p.skipped_reason});
       continue;
     }
-    positions.rows.push_back({std::to_string(p.index), Fixed(p.theta_in / kDeg, 2),
+    positions.rows.push_back({std::to_string(p.index), Fixed(Degrees(p.theta_in), 2),
                               Fixed(p.reprojection_rms_px, 3),
                               Fixed(p.camera_disagreement_m * 1000, 2),
                               p.light.from_highlight ? "highlight (refined)" : "nominal",
-                              Fixed(p.light.nominal_disagreement_rad / kDeg, 3),
+                              Fixed(Degrees(p.light.nominal_disagreement_rad), 3),
                               Fixed(p.invalid_fraction, 4), std::to_string(p.samples)});
   }
   recon.tables.push_back(positions);
@@ -170,10 +170,10 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
     const auto& sd = d.stddev[1];
     std::string warnings;
     for (const auto& w : d.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
-    slices.rows.push_back({Fixed(s.theta_in / kDeg, 2), Fixed(g.a1, 4) + " ± " + Fixed(sd[0], 4),
+    slices.rows.push_back({Fixed(Degrees(s.theta_in), 2), Fixed(g.a1, 4) + " ± " + Fixed(sd[0], 4),
                            Fixed(g.a2, 4) + " ± " + Fixed(sd[1], 4),
-                           Fixed(g.h / kDeg, 3) + " ± " + Fixed(sd[2] / kDeg, 3),
-                           Fixed(g.x0 / kDeg, 3) + " ± " + Fixed(sd[3] / kDeg, 3),
+                           Fixed(Degrees(g.h), 3) + " ± " + Fixed(Degrees(sd[2]), 3),
+                           Fixed(Degrees(g.x0), 3) + " ± " + Fixed(Degrees(sd[3]), 3),
                            Fixed(d.residual, 4), warnings.empty() ? "-" : warnings});
   }
   recon.tables.push_back(slices);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "brdf/material_file.h"
+#include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "evaluate/held_out.h"
@@ -34,12 +35,12 @@ EvaluateSummary RunEvaluate(const EvaluateOptions& options) {
 
   say("rendering " + std::to_string(options.view_phis_deg.size()) + " held-out views");
   std::vector<double> phis;
-  for (double d : options.view_phis_deg) phis.push_back(d * M_PI / 180);
+  for (double d : options.view_phis_deg) phis.push_back(Radians(d));
   HeldOutOptions held_out;
   held_out.keep_images = true;
   held_out.linear_interpolation = options.linear_interpolation;
   const std::vector<HeldOutResult> views = EvaluateHeldOut(
-      scene, fitted, OrientationViews(options.view_elevation_deg * M_PI / 180, phis), held_out);
+      scene, fitted, OrientationViews(Radians(options.view_elevation_deg), phis), held_out);
 
   say("BRDF error against the truth");
   Report report;

@@ -3,7 +3,9 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "common/angles.h"
 #include "common/error.h"
+#include "common/option_check.h"
 #include "render/capture_view.h"
 #include "render/gl_context.h"
 #include "sim/simulator.h"
@@ -43,7 +45,7 @@ std::vector<HeldOutView> OrientationViews(double elevation, const std::vector<do
   std::vector<HeldOutView> views;
   for (double phi : phis) {
     std::ostringstream name;
-    name << "phi=" << std::lround(phi * 180 / M_PI) << "deg";
+    name << "phi=" << std::lround(Degrees(phi)) << "deg";
     views.push_back(
         {name.str(),
          phi,
@@ -53,7 +55,8 @@ std::vector<HeldOutView> OrientationViews(double elevation, const std::vector<do
 }
 
 void HeldOutOptions::Validate() const {
-  if (exposure_s < 0) throw OptionsError("held-out exposure must be >= 0 (0 = bracket middle)");
+  CheckOption(exposure_s >= 0, "HeldOutOptions.exposure_s", exposure_s,
+              ">= 0 (0 = the bracket's middle)");
 }
 
 int CaptureBitDepth(const sim::Scene& scene) {

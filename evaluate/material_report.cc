@@ -4,15 +4,12 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "brdf/metrics.h"
+#include "common/angles.h"
 #include "evaluate/display_image.h"
 #include "evaluate/svg_plot.h"
 
 namespace brdfrig::evaluate {
-namespace {
-
-constexpr double kDeg = M_PI / 180;
-
-}  // namespace
+namespace {}  // namespace
 
 ReportSection HeldOutSection(const std::vector<HeldOutResult>& views, double elevation_deg,
                              const std::filesystem::path& report_dir) {
@@ -28,7 +25,7 @@ ReportSection HeldOutSection(const std::vector<HeldOutResult>& views, double ele
              {}};
   Series whole{"whole photo", {}, {}, true}, sample{"sample only", {}, {}, true};
   for (const HeldOutResult& v : views) {
-    const double phi = v.view.phi / kDeg;
+    const double phi = Degrees(v.view.phi);
     psnr.rows.push_back(
         {Fixed(phi, 0), Fixed(v.whole_photo.psnr_db, 2), Fixed(v.sample_only.psnr_db, 2)});
     whole.x.push_back(phi);
@@ -61,8 +58,8 @@ ReportSection BrdfSection(const brdf::Brdf& truth, const brdf::Brdf& fitted) {
                {"theta_in (deg)", "truth", "fitted"},
                {}};
   for (double t : {15.0, 30.0, 45.0, 60.0}) {
-    albedo.rows.push_back({Fixed(t, 0), Fixed(brdf::DirectionalAlbedo(truth, t * kDeg)[1], 4),
-                           Fixed(brdf::DirectionalAlbedo(fitted, t * kDeg)[1], 4)});
+    albedo.rows.push_back({Fixed(t, 0), Fixed(brdf::DirectionalAlbedo(truth, Radians(t))[1], 4),
+                           Fixed(brdf::DirectionalAlbedo(fitted, Radians(t))[1], 4)});
   }
   brdf_section.tables.push_back(albedo);
   return brdf_section;

@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "brdf/metrics.h"
+#include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "reconstruct/batch.h"
@@ -16,7 +17,6 @@ namespace brdfrig::evaluate {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = M_PI / 180;
 
 // The base scene with the study's replacements: resolution (same field of view: the focal
 // length is in mm), the sample's BRDF, the sensor format and the effects list.
@@ -65,14 +65,15 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     simulate.write_truth = false;
     simulate.exposures = s.exposures;
     for (double theta : s.position_degrees) {
-      simulate.positions.push_back({{"camera_arm", theta * kDeg}, {"light_arm", -theta * kDeg}});
+      simulate.positions.push_back(
+          {{"camera_arm", Radians(theta)}, {"light_arm", -Radians(theta)}});
     }
     result.capture_time_s = sim::Simulate(simulate).virtual_time_s;
     const sim::Scene scene = sim::LoadScene(scene_file);
 
     const auto start = std::chrono::steady_clock::now();
     reconstruct::ReconstructOptions options;
-    options.samples.bin_width = s.bin_width_deg * kDeg;
+    options.samples.bin_width = Radians(s.bin_width_deg);
     options.fit.max_iterations = s.fit_iterations;
     const reconstruct::ReconstructionResult fit =
         reconstruct::Reconstruct(reconstruct::LoadCapture(s.work_dir / "capture"), options);
@@ -84,11 +85,11 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     result.brdf_error = brdf::LogCosineError(*scene.sample.brdf, model);
 
     std::vector<double> phis;
-    for (double d : s.view_phis_deg) phis.push_back(d * kDeg);
+    for (double d : s.view_phis_deg) phis.push_back(Radians(d));
     HeldOutOptions held_out;
     held_out.linear_interpolation = s.linear_interpolation;
     result.views = EvaluateHeldOut(scene, model,
-                                   OrientationViews(s.view_elevation_deg * kDeg, phis), held_out);
+                                   OrientationViews(Radians(s.view_elevation_deg), phis), held_out);
     for (const HeldOutResult& v : result.views) {
       result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
       result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());

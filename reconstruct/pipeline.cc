@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/exr_io.h"
@@ -14,8 +15,6 @@
 
 namespace brdfrig::reconstruct {
 namespace {
-
-constexpr double kDeg = 180 / M_PI;
 
 class StageTimer {
  public:
@@ -229,7 +228,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
                                         report.radiometry, nominal.target, options.samples);
         } else {
           report.warnings.push_back("light refinement rejected (moved " +
-                                    std::to_string(refined.shift_rad * kDeg) +
+                                    std::to_string(Degrees(refined.shift_rad)) +
                                     "°): the highlight's light is used");
         }
       }
@@ -263,7 +262,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   };
   std::vector<SliceInput> inputs;
   for (PositionData& data : measured) {
-    if (!inputs.empty() && data.samples.theta_in - inputs.back().samples.theta_in < 0.1 / kDeg) {
+    if (!inputs.empty() && data.samples.theta_in - inputs.back().samples.theta_in < Radians(0.1)) {
       AppendSamples(&inputs.back().samples, data.samples);
       inputs.back().warnings.push_back("positions pooled: same incidence angle");
     } else {
@@ -281,7 +280,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   {
     StageTimer timer(&seconds, "fit");
     for (const SliceInput& input : inputs) {
-      say("fitting the slice at theta_in " + std::to_string(input.samples.theta_in * kDeg) + "°");
+      say("fitting the slice at theta_in " + std::to_string(Degrees(input.samples.theta_in)) + "°");
       fits.push_back(FitSlice(input.samples, options.fit));
     }
     // A slice whose samples never reach the lobe's tail cannot tell A2: it takes the median A2
@@ -329,8 +328,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     } else {
       p["reprojection_rms_px"] = r.reprojection_rms_px;
       p["light_from_highlight"] = r.light.from_highlight;
-      p["light_vs_nominal_deg"] = r.light.nominal_disagreement_rad * kDeg;
-      p["light_refinement_deg"] = r.light_refinement_rad * kDeg;
+      p["light_vs_nominal_deg"] = Degrees(r.light.nominal_disagreement_rad);
+      p["light_refinement_deg"] = Degrees(r.light_refinement_rad);
       p["camera_vs_nominal_m"] = r.camera_disagreement_m;
       p["paper_spread"] = r.radiometry.relative_spread;
       p["clipped_fraction"] = r.invalid_fraction;
@@ -355,19 +354,19 @@ std::string ReconstructionResult::Summary() const {
       out << "skipped (" << p.skipped_reason << ")\n";
       continue;
     }
-    out << "theta_in " << p.theta_in * kDeg << "°, pose reprojection " << p.reprojection_rms_px
+    out << "theta_in " << Degrees(p.theta_in) << "°, pose reprojection " << p.reprojection_rms_px
         << " px (edges " << p.edge_line_rms_px << " px), camera " << p.camera_disagreement_m * 1000
         << " mm from nominal, light " << (p.light.from_highlight ? "from highlight" : "nominal")
-        << " (" << p.light.nominal_disagreement_rad * kDeg << "° from nominal, refined by "
-        << p.light_refinement_rad * kDeg << "°), paper spread " << p.radiometry.relative_spread
+        << " (" << Degrees(p.light.nominal_disagreement_rad) << "° from nominal, refined by "
+        << Degrees(p.light_refinement_rad) << "°), paper spread " << p.radiometry.relative_spread
         << ", " << p.samples << " samples\n";
   }
   out << "slices (R, G, B: A1 A2 h x0; angles in degrees):\n";
   for (std::size_t i = 0; i < material.slices.size(); ++i) {
     const brdf::Slice& s = material.slices[i];
-    out << "  theta_in " << s.theta_in * kDeg << "°:";
+    out << "  theta_in " << Degrees(s.theta_in) << "°:";
     for (const brdf::LobeParams& p : s.channel) {
-      out << "  [" << p.a1 << " " << p.a2 << " " << p.h * kDeg << " " << p.x0 * kDeg << "]";
+      out << "  [" << p.a1 << " " << p.a2 << " " << Degrees(p.h) << " " << Degrees(p.x0) << "]";
     }
     out << "  residual " << material.diagnostics[i].residual << "\n";
     for (const std::string& w : material.diagnostics[i].warnings)

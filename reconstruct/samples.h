@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "common/angles.h"
 #include "geometry/rig_geometry.h"
 #include "reconstruct/plane_view.h"
 #include "reconstruct/radiometry.h"
@@ -19,7 +20,7 @@ struct SampleOptions {
   double edge_margin = 0.04;  // fraction of the cut-out's size excluded along its border
   // Radians of theta per bin; 0 = every pixel a sample. The default (0.02°) is well below any
   // resolvable lobe width and cuts the fit's time by two orders of magnitude.
-  double bin_width = 0.02 * M_PI / 180;
+  double bin_width = Radians(0.02);
   void Validate() const;
 };
 

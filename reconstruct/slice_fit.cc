@@ -7,21 +7,15 @@
 #include <limits>
 #include <numeric>
 
+#include "brdf/logistic.h"
+#include "common/angles.h"
 #include "common/error.h"
+#include "common/option_check.h"
 
 namespace brdfrig::reconstruct {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Logistic 1/(1+exp(z)) without overflow.
-double Sigmoid(double z) {
-  if (z >= 0) {
-    const double e = std::exp(-z);
-    return e / (1 + e);
-  }
-  return 1 / (1 + std::exp(z));
-}
 
 // One sample's residual sqrt(w)·(ln m(theta) − ln f) with its analytic derivative with respect to
 // the internal parameters (a, b, s, x0).
@@ -35,7 +29,7 @@ class LogLobeResidual : public ceres::SizedCostFunction<1, 4> {
     const double* p = parameters[0];
     const double a2 = std::exp(p[0]), d = std::exp(p[1]), h = std::exp(p[2]), x0 = p[3];
     const double z = (theta_ - x0) / h;
-    const double sigma = Sigmoid(z);
+    const double sigma = brdf::Logistic(-z);
     const double m = a2 + d * sigma;
     if (!(m > 0) || !std::isfinite(m)) return false;
     residual[0] = sqrt_w_ * (std::log(m) - log_f_);
@@ -101,11 +95,12 @@ double Crossing(const Profile& p, double level) {
 }  // namespace
 
 void SliceFitOptions::Validate() const {
-  if (max_iterations < 1) throw OptionsError("SliceFitOptions.max_iterations must be >= 1");
-  if (!(function_tolerance > 0) || !(parameter_tolerance > 0)) {
-    throw OptionsError("SliceFitOptions tolerances must be > 0");
-  }
-  if (!(loss_scale >= 0)) throw OptionsError("SliceFitOptions.loss_scale must be >= 0");
+  CheckOption(max_iterations >= 1, "SliceFitOptions.max_iterations", max_iterations, ">= 1");
+  CheckOption(function_tolerance > 0, "SliceFitOptions.function_tolerance", function_tolerance,
+              "> 0");
+  CheckOption(parameter_tolerance > 0, "SliceFitOptions.parameter_tolerance", parameter_tolerance,
+              "> 0");
+  CheckOption(loss_scale >= 0, "SliceFitOptions.loss_scale", loss_scale, ">= 0");
 }
 
 SliceFit FitSlice(const BrdfSamples& samples, const SliceFitOptions& options,
@@ -133,8 +128,8 @@ SliceFit FitSlice(const BrdfSamples& samples, const SliceFitOptions& options,
       }
     }
     if (data[c].theta.size() < 8) {
-      throw Error("slice at theta_in " + std::to_string(samples.theta_in * 180 / M_PI) +
-                  "°: only " + std::to_string(data[c].theta.size()) +
+      throw Error("slice at theta_in " + std::to_string(Degrees(samples.theta_in)) + "°: only " +
+                  std::to_string(data[c].theta.size()) +
                   " usable samples in a channel (all clipped, dark or outside the cut-out?)");
     }
     fit.sample_count = std::max(fit.sample_count, static_cast<int>(data[c].theta.size()));
@@ -225,7 +220,6 @@ SliceFit FitSlice(const BrdfSamples& samples, const SliceFitOptions& options,
 
   // What the data support, judged on the green channel's lobe (the brightest in most scenes)
   // but flagged if any channel shows it.
-  const double deg = 180 / M_PI;
   for (int c = 0; c < 3; ++c) {
     const brdf::LobeParams& p = fit.channel[c].params;
     const double contrast = (p.a1 - p.a2) / std::max(p.a2, 1e-300);
@@ -254,17 +248,17 @@ SliceFit FitSlice(const BrdfSamples& samples, const SliceFitOptions& options,
   }
   if (!fit.a2_observed) {
     fit.warnings.push_back("A2 unobserved: samples reach theta " +
-                           std::to_string(fit.theta_max * deg) + "°, short of the lobe's tail");
+                           std::to_string(Degrees(fit.theta_max)) + "°, short of the lobe's tail");
   }
   if (!fit.a1_observed) {
     fit.warnings.push_back(
         "A1 unobserved: no samples near the mirror direction (nearest at theta " +
-        std::to_string(fit.theta_min * deg) + "°)");
+        std::to_string(Degrees(fit.theta_min)) + "°)");
   }
   if (!fit.h_resolved) {
     fit.warnings.push_back(
         "h unresolved: the lobe's edge is sharper than the angular resolution (" +
-        std::to_string(samples.angular_pixel_size * deg) + "° per pixel); h is an upper bound");
+        std::to_string(Degrees(samples.angular_pixel_size)) + "° per pixel); h is an upper bound");
   }
   return fit;
 }

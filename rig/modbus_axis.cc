@@ -6,16 +6,15 @@
 #include <map>
 #include <thread>
 
+#include "common/angles.h"
 #include "common/format.h"
 
 namespace brdfrig::rig {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / M_PI;
-
-std::string Degrees(double radians) {
+std::string DegreesText(double radians) {
   char text[32];
-  std::snprintf(text, sizeof(text), "%.3f deg", radians * kDegPerRad);
+  std::snprintf(text, sizeof(text), "%.3f deg", Degrees(radians));
   return text;
 }
 
@@ -86,7 +85,7 @@ std::string ModbusAxis::Settings() const {
 }
 
 double ModbusAxis::ToRadians(int32_t steps) const {
-  return steps / options_.steps_per_degree / kDegPerRad;
+  return Radians(steps / options_.steps_per_degree);
 }
 
 DriveReading ModbusAxis::Read() {
@@ -183,14 +182,14 @@ DriveReading ModbusAxis::WaitFor(const std::string& what,
     if (r.alarm) {
       Fail(AxisError::Kind::kAlarm, r.alarm_code,
            "drive alarm " + Hex(r.alarm_code) + " during " + what + " (at " +
-               Degrees(ToRadians(r.position_steps)) +
+               DegreesText(ToRadians(r.position_steps)) +
                "); see the drive manual's alarm table, fix the cause, then reset the alarm");
     }
     if (done(r)) return r;
     if (std::chrono::steady_clock::now() > deadline) {
       Fail(AxisError::Kind::kTimeout, 0,
            what + " did not finish within " + Number(options_.move_timeout.count() / 1000.0) +
-               " s (now at " + Degrees(ToRadians(r.position_steps)) +
+               " s (now at " + DegreesText(ToRadians(r.position_steps)) +
                (r.moving ? ", still moving" : ", not moving") + ")");
     }
     std::this_thread::sleep_for(options_.poll_interval);
@@ -198,10 +197,10 @@ DriveReading ModbusAxis::WaitFor(const std::string& what,
 }
 
 MoveReport ModbusAxis::MoveTo(double angle) {
-  const double deg = angle * kDegPerRad;
+  const double deg = Degrees(angle);
   if (!(deg >= options_.min_deg && deg <= options_.max_deg)) {
     throw AxisError(AxisError::Kind::kLimits, 0,
-                    name_ + ": " + Degrees(angle) + " is outside the configured limits [" +
+                    name_ + ": " + DegreesText(angle) + " is outside the configured limits [" +
                         Number(options_.min_deg) + ", " + Number(options_.max_deg) +
                         "] deg; nothing was moved");
   }
@@ -210,7 +209,7 @@ MoveReport ModbusAxis::MoveTo(double angle) {
   try {
     WriteMove(target);
     const DriveReading r = WaitFor(
-        "move to " + Degrees(angle), start + options_.move_timeout, [&](const DriveReading& s) {
+        "move to " + DegreesText(angle), start + options_.move_timeout, [&](const DriveReading& s) {
           return !s.moving && s.in_position &&
                  std::abs(s.position_steps - target) <= options_.tolerance_steps;
         });
@@ -221,7 +220,7 @@ MoveReport ModbusAxis::MoveTo(double angle) {
     return report;
   } catch (const ModbusError& e) {
     Fail(AxisError::Kind::kCommunication, 0,
-         std::string("move to ") + Degrees(angle) + ": " + e.what());
+         std::string("move to ") + DegreesText(angle) + ": " + e.what());
   }
 }
 

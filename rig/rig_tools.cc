@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/format.h"
@@ -16,8 +17,6 @@
 
 namespace brdfrig::rig {
 namespace {
-
-constexpr double kDegPerRad = 180.0 / M_PI;
 
 std::string Format(const char* format, double value) {
   char text[64];
@@ -60,7 +59,7 @@ void CheckAxis(Axis& axis, const std::string& backend, DeviceCheck& check) {
   const auto* modbus = dynamic_cast<const ModbusAxis*>(&axis);
   std::string where = modbus ? modbus->Describe() : backend;
   const AxisStatus status = axis.Status();
-  const std::string position = Format("%.3f deg", status.position * kDegPerRad);
+  const std::string position = Format("%.3f deg", Degrees(status.position));
   switch (status.state) {
     case AxisState::kReady:
       check.ok = true;
@@ -126,7 +125,7 @@ std::string RigCheckReport::ToString() const {
 RigCheckReport CheckRig(const std::filesystem::path& rig_file) {
   RigCheckReport report;
   report.rig_file = rig_file;
-  const RigDescription description = ReadRigDescription(rig_file);
+  const geometry::RigDescription description = ReadRigDescription(rig_file);
   const YamlNode root = LoadYamlFile(rig_file.string());
 
   auto check = [&](const std::string& name, const YamlNode& settings, auto open_and_describe) {
@@ -182,7 +181,7 @@ RigCheckReport CheckRig(const std::filesystem::path& rig_file) {
 MoveReport MoveAxis(const std::filesystem::path& rig_file, const std::string& axis,
                     double angle_deg) {
   if (!std::isfinite(angle_deg)) throw OptionsError("rig move: the angle must be a finite number");
-  return OpenAxis(rig_file, axis)->MoveTo(angle_deg / kDegPerRad);
+  return OpenAxis(rig_file, axis)->MoveTo(Radians(angle_deg));
 }
 
 std::string ShootReport::ToString() const {

@@ -4,12 +4,11 @@
 #include <cmath>
 #include <set>
 
+#include "common/angles.h"
 #include "sim/yaml_values.h"
 
 namespace brdfrig::sim {
 namespace {
-
-constexpr double kDegree = M_PI / 180.0;
 
 double ReadPositive(const YamlNode& effect, const std::string& key, double fallback) {
   auto node = effect.Optional(key);
@@ -104,8 +103,8 @@ ResponseCurveEffect ParseResponseCurve(const YamlNode& node) {
 MechanicalErrorEffect ParseMechanicalError(const YamlNode& node) {
   MechanicalErrorEffect e;
   if (auto b = node.Optional("backlash_deg"))
-    e.backlash = b->InRange(b->AsDouble(), 0, 10) * kDegree;
-  if (auto j = node.Optional("jitter_deg")) e.jitter = j->InRange(j->AsDouble(), 0, 10) * kDegree;
+    e.backlash = Radians(b->InRange(b->AsDouble(), 0, 10));
+  if (auto j = node.Optional("jitter_deg")) e.jitter = Radians(j->InRange(j->AsDouble(), 0, 10));
   return e;
 }
 

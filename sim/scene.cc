@@ -3,13 +3,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/angles.h"
 #include "sim/sample_brdf.h"
 #include "sim/yaml_values.h"
 
 namespace brdfrig::sim {
 namespace {
-
-constexpr double kDegree = M_PI / 180.0;
 
 SampleDescription ParseSample(const YamlNode& node, const std::filesystem::path& base_dir,
                               const geometry::TargetGeometry& target) {
@@ -66,9 +65,9 @@ RenderSettings ParseRender(const YamlNode& node) {
 }
 
 AxisTiming ParseAxisTiming(const YamlNode& node, AxisTiming t) {
-  if (auto v = node.Optional("speed_deg_s")) t.speed = v->Positive(v->AsDouble()) * kDegree;
+  if (auto v = node.Optional("speed_deg_s")) t.speed = Radians(v->Positive(v->AsDouble()));
   if (auto a = node.Optional("acceleration_deg_s2")) {
-    t.acceleration = a->Positive(a->AsDouble()) * kDegree;
+    t.acceleration = Radians(a->Positive(a->AsDouble()));
   }
   node.Finish();
   return t;
@@ -105,9 +104,9 @@ geometry::AxisPositions ParsePositionDegrees(const YamlNode& node,
     const YamlNode value = node.Required(name);
     const geometry::RotationAxis* axis = rig.FindAxis(name);
     if (!axis) value.Fail("no axis named '" + name + "' in rig.axes");
-    const double angle = value.AsDouble() * kDegree;
+    const double angle = Radians(value.AsDouble());
     if (angle < axis->min - 1e-9 || angle > axis->max + 1e-9) {
-      value.InRange(angle / kDegree, axis->min / kDegree, axis->max / kDegree);
+      value.InRange(Degrees(angle), Degrees(axis->min), Degrees(axis->max));
     }
     positions[name] = angle;
   }
@@ -262,7 +261,7 @@ geometry::AxisPositions ParsePositionsDegrees(const std::string& text) {
     if (used == 0 || used != value.size() || !std::isfinite(degrees)) {
       throw Error("positions '" + text + "': '" + value + "' is not a number of degrees");
     }
-    if (!positions.emplace(name, degrees * kDegree).second) {
+    if (!positions.emplace(name, Radians(degrees)).second) {
       throw Error("positions '" + text + "': axis '" + name + "' given twice");
     }
   }

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "brdf/brdf.h"
+#include "common/angles.h"
 #include "common/yaml_reader.h"
 #include "geometry/rig_geometry.h"
 #include "sim/effects.h"
@@ -51,8 +52,8 @@ struct RenderSettings {
 };
 
 struct AxisTiming {
-  double speed = 30 * M_PI / 180;         // rad/s
-  double acceleration = 60 * M_PI / 180;  // rad/s²
+  double speed = Radians(30);         // rad/s
+  double acceleration = Radians(60);  // rad/s²
 };
 
 struct TimingDescription {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <thread>
 
+#include "common/angles.h"
 #include "sim/pixel_rng.h"
 
 namespace brdfrig::sim {
@@ -13,8 +14,6 @@ namespace {
 
 using rig::AxisError;
 using rig::CameraError;
-
-constexpr double kDegree = M_PI / 180.0;
 
 // FNV-1a: a stable stream id per axis name (std::hash may differ between standard libraries).
 std::uint64_t StableHash(const std::string& text) {
@@ -25,7 +24,7 @@ std::uint64_t StableHash(const std::string& text) {
 
 std::string Degrees(double radians) {
   std::ostringstream out;
-  out << radians / kDegree << "°";
+  out << Degrees(radians) << "°";
   return out.str();
 }
 

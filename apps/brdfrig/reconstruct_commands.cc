@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "common/angles.h"
 #include "common/error.h"
 #include "reconstruct/batch.h"
 
@@ -44,7 +45,7 @@ void RegisterReconstructCommands(CLI::App& app) {
     options.output = args->output;
     options.jobs = args->jobs;
     options.force = args->force;
-    options.reconstruct.samples.bin_width = args->bin_width_deg * M_PI / 180;
+    options.reconstruct.samples.bin_width = Radians(args->bin_width_deg);
     options.reconstruct.light_refine.enabled = !args->no_light_refine;
     const auto items = reconstruct::ReconstructBatch(
         options, [](const std::string& message) { std::fprintf(stderr, "%s\n", message.c_str()); });

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "common/angles.h"
 #include "common/error.h"
 #include "rig/rig_tools.h"
 #include "sim/drive_server_tool.h"
@@ -55,8 +56,8 @@ void RegisterRigCommands(CLI::App& app) {
   move->add_option("angle", args->angle_deg, "Target angle in degrees")->required();
   move->callback([args] {
     const rig::MoveReport report = rig::MoveAxis(args->rig, args->axis, args->angle_deg);
-    std::printf("%s at %.3f deg after %.2f s\n", args->axis.c_str(),
-                report.position * 180.0 / 3.14159265358979323846, report.duration_s);
+    std::printf("%s at %.3f deg after %.2f s\n", args->axis.c_str(), Degrees(report.position),
+                report.duration_s);
   });
 
   CLI::App* shoot = rig->add_subcommand("shoot", "Take one photo with the rig's camera");
