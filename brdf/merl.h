@@ -1,5 +1,5 @@
 // MERL BRDF tables (Matusik et al. 2003): 90 theta_h × 90 theta_d × 180 phi_d bins per
-// channel in Rusinkiewicz half/difference coordinates. Layout and scales in REFERENCE.md.
+// channel in Rusinkiewicz half/difference coordinates. Layout and scales: docs/design.md (formats).
 #pragma once
 
 #include <filesystem>

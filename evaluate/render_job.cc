@@ -6,7 +6,9 @@
 
 #include "brdf/brdf_file.h"
 #include "common/error.h"
+#include "common/option_check.h"
 #include "evaluate/display_image.h"
+#include "geometry/camera.h"
 #include "render/capture_view.h"
 #include "render/gl_context.h"
 #include "sim/scene.h"
@@ -25,12 +27,7 @@ render::Mesh MeshByName(const std::string& name) {
 render::View OrbitView(int width, int height) {
   render::View view;
   view.intrinsics = {width, height, 1.2 * height, 1.2 * height, width / 2.0, height / 2.0};
-  const Eigen::Vector3d eye(0.15, -0.25, 0.2), z = (-eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized(), y = z.cross(x);
-  Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
-  world_from_camera.linear() << x, y, z;
-  world_from_camera.translation() = eye;
-  view.pose.camera_from_world = world_from_camera.inverse();
+  view.pose = geometry::LookAt({0.15, -0.25, 0.2}, geometry::Vec3::Zero(), geometry::Vec3::UnitZ());
   return view;
 }
 
@@ -39,8 +36,9 @@ render::View OrbitView(int width, int height) {
 void RenderJobOptions::Validate() const {
   if (material.empty()) throw OptionsError("render: a material file is required");
   if (output.empty()) throw OptionsError("render: -o OUTPUT is required");
-  if (width < 1 || height < 1) throw OptionsError("render: --width/--height must be positive");
-  if (position < 0) throw OptionsError("render: --position must be >= 0");
+  CheckOption(width >= 1, "RenderJobOptions.width", width, ">= 1");
+  CheckOption(height >= 1, "RenderJobOptions.height", height, ">= 1");
+  CheckOption(position >= 0, "RenderJobOptions.position", position, ">= 0");
 }
 
 std::string RenderJobSummary::ToString() const {

@@ -10,6 +10,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/option_check.h"
 #include "common/sha256.h"
 
 namespace brdfrig::reconstruct {
@@ -63,7 +64,7 @@ std::string ExistingFingerprint(const fs::path& material_file) {
 void BatchOptions::Validate() const {
   if (inputs.empty()) throw OptionsError("reconstruct: no input capture given");
   if (output.empty()) throw OptionsError("reconstruct: no output given (-o)");
-  if (jobs < 1) throw OptionsError("reconstruct: --jobs must be >= 1");
+  CheckOption(jobs >= 1, "BatchOptions.jobs", jobs, ">= 1");
   reconstruct.Validate();
 }
 

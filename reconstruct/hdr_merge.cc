@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/exr_io.h"
+#include "common/option_check.h"
 #include "common/parallel.h"
 #include "reconstruct/raw_photo.h"
 
@@ -184,7 +185,7 @@ void HdrMergeOptions::Validate() const {
   if (!(saturation > black && saturation <= 1)) {
     throw OptionsError("HdrMergeOptions: need 0 <= black < saturation <= 1");
   }
-  if (!(read_floor > 0)) throw OptionsError("HdrMergeOptions.read_floor must be > 0");
+  CheckOption(read_floor > 0, "HdrMergeOptions.read_floor", read_floor, "> 0");
 }
 
 cv::Mat ReadPhoto(const std::string& path) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/option_check.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -32,10 +33,9 @@ cv::Vec3d Radiometry::ScaleAt(double x, double y) const {
 }
 
 void RadiometryOptions::Validate() const {
-  if (!(margin >= 0 && margin < 0.5))
-    throw OptionsError("RadiometryOptions.margin must be in [0, 0.5)");
-  if (stride < 1) throw OptionsError("RadiometryOptions.stride must be >= 1");
-  if (!(warn_spread > 0)) throw OptionsError("RadiometryOptions.warn_spread must be > 0");
+  CheckOption(margin >= 0 && margin < 0.5, "RadiometryOptions.margin", margin, "in [0, 0.5)");
+  CheckOption(stride >= 1, "RadiometryOptions.stride", stride, ">= 1");
+  CheckOption(warn_spread > 0, "RadiometryOptions.warn_spread", warn_spread, "> 0");
 }
 
 Radiometry CalibrateFromPaper(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,

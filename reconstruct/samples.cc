@@ -6,15 +6,15 @@
 
 #include "brdf/slice_model.h"
 #include "common/error.h"
+#include "common/option_check.h"
 #include "common/parallel.h"
 
 namespace brdfrig::reconstruct {
 
 void SampleOptions::Validate() const {
-  if (!(edge_margin >= 0 && edge_margin < 0.4)) {
-    throw OptionsError("SampleOptions.edge_margin must be in [0, 0.4)");
-  }
-  if (!(bin_width >= 0)) throw OptionsError("SampleOptions.bin_width must be >= 0");
+  CheckOption(edge_margin >= 0 && edge_margin < 0.4, "SampleOptions.edge_margin", edge_margin,
+              "in [0, 0.4)");
+  CheckOption(bin_width >= 0, "SampleOptions.bin_width", bin_width, ">= 0");
 }
 
 double BrdfSamples::ThetaMin() const {

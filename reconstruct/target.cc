@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/option_check.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -96,22 +97,18 @@ cv::Point2d Intersect(const cv::Vec4d& a, const cv::Vec4d& b) {
 }  // namespace
 
 void TargetOptions::Validate() const {
-  if (!(search_band > 0 && search_band < 0.5)) {
-    throw OptionsError("TargetOptions.search_band must be in (0, 0.5)");
-  }
-  if (!(corner_skip >= 0 && corner_skip < 0.4)) {
-    throw OptionsError("TargetOptions.corner_skip must be in [0, 0.4)");
-  }
-  if (!(profile_step_px > 0)) throw OptionsError("TargetOptions.profile_step_px must be > 0");
-  if (!(warn_camera_offset_m > 0)) {
-    throw OptionsError("TargetOptions.warn_camera_offset_m must be > 0");
-  }
-  if (!(min_log_step > 0)) throw OptionsError("TargetOptions.min_log_step must be > 0");
-  if (!(min_edge_fraction > 0 && min_edge_fraction <= 1)) {
-    throw OptionsError("TargetOptions.min_edge_fraction must be in (0, 1]");
-  }
-  if (!(max_reprojection_px > 0))
-    throw OptionsError("TargetOptions.max_reprojection_px must be > 0");
+  CheckOption(search_band > 0 && search_band < 0.5, "TargetOptions.search_band", search_band,
+              "in (0, 0.5)");
+  CheckOption(corner_skip >= 0 && corner_skip < 0.4, "TargetOptions.corner_skip", corner_skip,
+              "in [0, 0.4)");
+  CheckOption(profile_step_px > 0, "TargetOptions.profile_step_px", profile_step_px, "> 0");
+  CheckOption(warn_camera_offset_m > 0, "TargetOptions.warn_camera_offset_m", warn_camera_offset_m,
+              "> 0");
+  CheckOption(min_log_step > 0, "TargetOptions.min_log_step", min_log_step, "> 0");
+  CheckOption(min_edge_fraction > 0 && min_edge_fraction <= 1, "TargetOptions.min_edge_fraction",
+              min_edge_fraction, "in (0, 1]");
+  CheckOption(max_reprojection_px > 0, "TargetOptions.max_reprojection_px", max_reprojection_px,
+              "> 0");
 }
 
 cv::Matx33d CameraMatrix(const geometry::Intrinsics& k) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "common/check.h"
 #include "common/error.h"
 
 namespace brdfrig::render {
@@ -76,7 +77,7 @@ std::unique_ptr<GpuMaterial> GpuMaterial::Merl(const brdf::MerlTable& table) {
   m->program_ = std::make_unique<GlProgram>(
       std::vector<std::string>{"mesh.vert"},
       std::vector<std::string>{"reference_brdfs.glsl", "shade.frag"}, Defines("MATERIAL_MERL"));
-  // Interleave the channel blocks and apply MERL's per-channel scales (REFERENCE.md).
+  // Interleave the channel blocks and apply MERL's per-channel scales (docs/design.md, formats).
   constexpr double kScale[3] = {1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0};
   std::vector<float> rgb(3 * static_cast<std::size_t>(brdf::kMerlBins));
   for (std::size_t i = 0; i < static_cast<std::size_t>(brdf::kMerlBins); ++i) {
@@ -134,9 +135,8 @@ void GpuMaterial::Bind() const {
 }
 
 cv::Mat EvalSliceModelOnGpu(const brdf::SliceModel& model, const cv::Mat& angles, bool linear) {
-  if (angles.type() != CV_32FC2 || angles.empty()) {
-    throw Error("EvalSliceModelOnGpu: angles must be a non-empty CV_32FC2 image");
-  }
+  BRDFRIG_CHECK(angles.type() == CV_32FC2 && !angles.empty(),
+                "EvalSliceModelOnGpu: angles must be a non-empty CV_32FC2 image");
   std::unique_ptr<GpuMaterial> material = GpuMaterial::SliceModel(model);
   material->SetLinearInterpolation(linear);
   GlProgram grid({"grid.vert"}, {"slice_model.glsl", "grid.frag"}, Defines("MATERIAL_SLICE"));

@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include "common/check.h"
 #include "common/error.h"
 
 namespace brdfrig::render {
@@ -47,9 +48,8 @@ void Renderer::Draw(const View& view, const std::vector<PointLight>& lights,
   if (lights.size() > static_cast<std::size_t>(kMaxLights)) {
     throw Error("renderer: at most " + std::to_string(kMaxLights) + " point lights");
   }
-  if (view.intrinsics.width != width_ || view.intrinsics.height != height_) {
-    throw Error("renderer: view resolution differs from the render target");
-  }
+  BRDFRIG_CHECK(view.intrinsics.width == width_ && view.intrinsics.height == height_,
+                "the view's resolution must be the render target's");
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, width_, height_);
   glEnable(GL_DEPTH_TEST);
