@@ -15,6 +15,7 @@ namespace brdfrig::acquire {
 
 using session::ReadSession;
 using session::SessionContents;
+
 namespace {
 
 namespace fs = std::filesystem;

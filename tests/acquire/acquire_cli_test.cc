@@ -22,6 +22,7 @@ namespace brdfrig::acquire {
 
 using session::ReadSession;
 using session::SessionContents;
+
 namespace {
 
 namespace fs = std::filesystem;

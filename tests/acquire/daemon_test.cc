@@ -23,6 +23,7 @@ namespace brdfrig::acquire {
 using session::ReadSession;
 using session::SessionContents;
 using session::VerifySession;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -27,6 +27,7 @@ using session::SqliteDb;
 using session::Statement;
 using session::VerifyReport;
 using session::VerifySession;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -24,10 +24,9 @@
 namespace brdfrig::acquire {
 
 using session::ReadSession;
-using session::RecordedFrame;
-using session::SessionContents;
 using session::VerifyReport;
 using session::VerifySession;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -63,9 +62,10 @@ Child RunHelper(const testing::TestRig& rig, const fs::path& session, int kill_a
   return child;
 }
 
-std::map<std::pair<int, int>, std::string> Hashes(const SessionContents& s) {
+std::map<std::pair<int, int>, std::string> Hashes(const session::SessionContents& s) {
   std::map<std::pair<int, int>, std::string> hashes;
-  for (const RecordedFrame& f : s.frames) hashes[{f.position_index, f.bracket_index}] = f.sha256;
+  for (const session::RecordedFrame& f : s.frames)
+    hashes[{f.position_index, f.bracket_index}] = f.sha256;
   return hashes;
 }
 
@@ -75,7 +75,7 @@ TEST(KillTest, SessionsKilledAtRandomMomentsResumeToTheUninterruptedResult) {
 
   const Child reference_run = RunHelper(rig, rig.sessions / "reference", 0, 0, kill_log);
   ASSERT_TRUE(reference_run.succeeded()) << "status " << reference_run.status;
-  const SessionContents reference = ReadSession(rig.sessions / "reference");
+  const session::SessionContents reference = ReadSession(rig.sessions / "reference");
   ASSERT_EQ(reference.frames.size(), 6u);
   const auto reference_hashes = Hashes(reference);
 
@@ -116,12 +116,12 @@ TEST(KillTest, SessionsKilledAtRandomMomentsResumeToTheUninterruptedResult) {
 
   for (const fs::path& dir : sessions) {
     SCOPED_TRACE(dir.string());
-    const SessionContents s = ReadSession(dir);
+    const session::SessionContents s = ReadSession(dir);
     EXPECT_EQ(s.exit_status, "success");
     EXPECT_TRUE(s.Complete());
     ASSERT_EQ(s.frames.size(), 6u);  // exactly once: (position, bracket) is unique
     EXPECT_EQ(Hashes(s), reference_hashes);
-    for (const RecordedFrame& f : s.frames) EXPECT_EQ(Sha256FileHex(f.file), f.sha256);
+    for (const session::RecordedFrame& f : s.frames) EXPECT_EQ(Sha256FileHex(f.file), f.sha256);
     const VerifyReport report = VerifySession(dir);
     EXPECT_TRUE(report.ok()) << report.ToString();
     for (const auto& entry : fs::recursive_directory_iterator(dir)) {

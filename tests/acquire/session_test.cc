@@ -19,6 +19,7 @@ using session::RecordedFrame;
 using session::SessionContents;
 using session::VerifyReport;
 using session::VerifySession;
+
 namespace {
 
 constexpr double kDegree = M_PI / 180;
