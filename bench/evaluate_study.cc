@@ -13,8 +13,8 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "evaluate/report.h"
-#include "evaluate/study.h"
 #include "evaluate/svg_plot.h"
+#include "jobs/study.h"
 
 namespace {
 
@@ -27,8 +27,8 @@ std::vector<double> Spread(int count, double from, double to) {
   return v;
 }
 
-evaluate::StudySettings Base(int width, int height) {
-  evaluate::StudySettings s;
+jobs::StudySettings Base(int width, int height) {
+  jobs::StudySettings s;
   s.width = width;
   s.height = height;
   s.position_degrees = Spread(6, 15, 65);
@@ -46,9 +46,9 @@ void PhotoCount(int width, int height, const std::filesystem::path& out) {
   std::vector<evaluate::Series> whole, sample;
   bool header = false;
   for (int count : counts) {
-    evaluate::StudySettings s = Base(width, height);
+    jobs::StudySettings s = Base(width, height);
     s.position_degrees = Spread(count, 15, 65);
-    const evaluate::StudyResult r = evaluate::RunStudyPoint(s);
+    const jobs::StudyResult r = jobs::RunStudyPoint(s);
     if (!header) {
       std::printf("| photos |");
       for (const auto& v : r.views) std::printf(" phi %3.0f |", Degrees(v.view.phi));
@@ -95,11 +95,11 @@ void Sweep(int width, int height, const std::filesystem::path& out) {
       "reconstruct (s) |\n|---|---|---|---|---|---|\n");
   struct Point {
     std::string name;
-    evaluate::StudySettings settings;
+    jobs::StudySettings settings;
   };
   std::vector<Point> points;
   const auto add = [&](const std::string& name, auto change) {
-    evaluate::StudySettings s = Base(width, height);
+    jobs::StudySettings s = Base(width, height);
     change(s);
     points.push_back({name, s});
   };
@@ -118,7 +118,7 @@ void Sweep(int width, int height, const std::filesystem::path& out) {
   add("linear interpolation", [](auto& s) { s.linear_interpolation = true; });
   evaluate::Series frontier{"settings", {}, {}, false};
   for (const Point& p : points) {
-    const evaluate::StudyResult r = evaluate::RunStudyPoint(p.settings);
+    const jobs::StudyResult r = jobs::RunStudyPoint(p.settings);
     std::printf("| %s | %s | %s | %s | %s | %s |\n", p.name.c_str(),
                 Fixed(r.mean_psnr_whole, 2).c_str(), Fixed(r.mean_psnr_sample, 2).c_str(),
                 Fixed(r.brdf_error, 3).c_str(), Fixed(r.capture_time_s, 1).c_str(),
@@ -169,12 +169,12 @@ void Materials(int width, int height) {
   };
   for (const auto& [name, brdf] : samples) {
     for (const auto& [sensor, format, effects] : sensors) {
-      evaluate::StudySettings s = Base(width, height);
+      jobs::StudySettings s = Base(width, height);
       s.sample_brdf = brdf;
       s.sensor_format = format;
       s.effects = effects;
       try {
-        const evaluate::StudyResult r = evaluate::RunStudyPoint(s);
+        const jobs::StudyResult r = jobs::RunStudyPoint(s);
         std::printf("| %s | %s | %s | %s | %s | %d |\n", name.c_str(), sensor.c_str(),
                     Fixed(r.mean_psnr_whole, 2).c_str(), Fixed(r.mean_psnr_sample, 2).c_str(),
                     Fixed(r.brdf_error, 3).c_str(), r.slices);

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "evaluate/demo.h"
-#include "evaluate/evaluate_job.h"
+#include "jobs/demo.h"
+#include "jobs/evaluate_job.h"
 
 namespace brdfrig::apps {
 namespace {
@@ -34,11 +34,11 @@ void RegisterEvaluateCommands(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "Scene file (default: the built-in default scene)");
   cmd->add_option("-o,--output", args->output, "Report directory");
   cmd->callback([args] {
-    evaluate::DemoOptions options;
+    jobs::DemoOptions options;
     options.scene = args->scene;
     options.output_dir = args->output;
     options.progress = Progress;
-    const evaluate::DemoSummary summary = evaluate::RunDemo(options);
+    const jobs::DemoSummary summary = jobs::RunDemo(options);
     std::printf("%s\nreport: %s\n", summary.text.c_str(), summary.report_html.string().c_str());
   });
 
@@ -53,7 +53,7 @@ void RegisterEvaluateCommands(CLI::App& app) {
       ->delimiter(',');
   ev->add_flag("--linear", eval->linear, "Render with the seed's linear interpolation");
   ev->callback([eval] {
-    evaluate::EvaluateOptions options;
+    jobs::EvaluateOptions options;
     options.material = eval->material;
     options.scene = eval->scene;
     options.output_dir = eval->output;
@@ -61,7 +61,7 @@ void RegisterEvaluateCommands(CLI::App& app) {
     options.view_phis_deg = eval->phis_deg;
     options.linear_interpolation = eval->linear;
     options.progress = Progress;
-    const evaluate::EvaluateSummary summary = evaluate::RunEvaluate(options);
+    const jobs::EvaluateSummary summary = jobs::RunEvaluate(options);
     std::printf("%s\nreport: %s\n", summary.text.c_str(), summary.report_html.string().c_str());
   });
 }

@@ -4,13 +4,13 @@
 #include <memory>
 
 #include "brdf/brdf_file.h"
-#include "evaluate/render_job.h"
+#include "jobs/render_job.h"
 #include "render/viewer.h"
 
 namespace brdfrig::apps {
 
 void RegisterRenderCommands(CLI::App& app) {
-  auto render_options = std::make_shared<evaluate::RenderJobOptions>();
+  auto render_options = std::make_shared<jobs::RenderJobOptions>();
   CLI::App* render = app.add_subcommand(
       "render", "Render a material headless (a capture position of a scene, or a mesh)");
   render->add_option("material", render_options->material, "material.json or MERL .binary")
@@ -23,7 +23,7 @@ void RegisterRenderCommands(CLI::App& app) {
   render->add_option("-o,--output", render_options->output, ".exr radiance or .png picture")
       ->required();
   render->callback([render_options] {
-    const evaluate::RenderJobSummary s = evaluate::RunRenderJob(*render_options);
+    const jobs::RenderJobSummary s = jobs::RunRenderJob(*render_options);
     std::printf("rendered %s -> %s\n", s.ToString().c_str(), render_options->output.c_str());
   });
 

@@ -1,4 +1,4 @@
-#include "evaluate/render_job.h"
+#include "jobs/render_job.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include "common/error.h"
 #include "sim/image_io.h"
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 namespace {
 
 namespace fs = std::filesystem;
@@ -62,4 +62,4 @@ TEST(RenderJobTest, BadInputsGiveClearErrors) {
 }
 
 }  // namespace
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

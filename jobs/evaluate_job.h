@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 
 struct EvaluateOptions {
   std::filesystem::path material;    // material.json to judge
@@ -28,4 +28,4 @@ struct EvaluateSummary {
 
 EvaluateSummary RunEvaluate(const EvaluateOptions& options);
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

@@ -1,4 +1,4 @@
-#include "evaluate/evaluate_job.h"
+#include "jobs/evaluate_job.h"
 
 #include <cmath>
 
@@ -11,7 +11,7 @@
 #include "evaluate/report.h"
 #include "sim/scene.h"
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 
 void EvaluateOptions::Validate() const {
   if (material.empty()) throw OptionsError("evaluate: no material given");
@@ -36,17 +36,19 @@ EvaluateSummary RunEvaluate(const EvaluateOptions& options) {
   say("rendering " + std::to_string(options.view_phis_deg.size()) + " held-out views");
   std::vector<double> phis;
   for (double d : options.view_phis_deg) phis.push_back(Radians(d));
-  HeldOutOptions held_out;
+  evaluate::HeldOutOptions held_out;
   held_out.keep_images = true;
   held_out.linear_interpolation = options.linear_interpolation;
-  const std::vector<HeldOutResult> views = EvaluateHeldOut(
-      scene, fitted, OrientationViews(Radians(options.view_elevation_deg), phis), held_out);
+  const std::vector<evaluate::HeldOutResult> views = evaluate::EvaluateHeldOut(
+      scene, fitted, evaluate::OrientationViews(Radians(options.view_elevation_deg), phis),
+      held_out);
 
   say("BRDF error against the truth");
-  Report report;
+  evaluate::Report report;
   report.title = "brdfrig evaluate: " + options.material.string() + " against " + scene.Summary();
-  report.sections.push_back(HeldOutSection(views, options.view_elevation_deg, options.output_dir));
-  report.sections.push_back(BrdfSection(*scene.sample.brdf, fitted));
+  report.sections.push_back(
+      evaluate::HeldOutSection(views, options.view_elevation_deg, options.output_dir));
+  report.sections.push_back(evaluate::BrdfSection(*scene.sample.brdf, fitted));
   report.WriteHtml(options.output_dir);
   EvaluateSummary summary;
   summary.text = report.Text();
@@ -55,4 +57,4 @@ EvaluateSummary RunEvaluate(const EvaluateOptions& options) {
   return summary;
 }
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 
 struct RenderJobOptions {
   std::filesystem::path material;  // material.json or MERL .binary
@@ -27,4 +27,4 @@ struct RenderJobSummary {
 
 RenderJobSummary RunRenderJob(const RenderJobOptions& options);
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

@@ -1,4 +1,4 @@
-#include "evaluate/study.h"
+#include "jobs/study.h"
 
 #include <chrono>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include "sim/scene.h"
 #include "sim/simulate.h"
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 namespace {
 
 namespace fs = std::filesystem;
@@ -86,11 +86,11 @@ StudyResult RunStudyPoint(const StudySettings& s) {
 
     std::vector<double> phis;
     for (double d : s.view_phis_deg) phis.push_back(Radians(d));
-    HeldOutOptions held_out;
+    evaluate::HeldOutOptions held_out;
     held_out.linear_interpolation = s.linear_interpolation;
-    result.views = EvaluateHeldOut(scene, model,
-                                   OrientationViews(Radians(s.view_elevation_deg), phis), held_out);
-    for (const HeldOutResult& v : result.views) {
+    result.views = evaluate::EvaluateHeldOut(
+        scene, model, evaluate::OrientationViews(Radians(s.view_elevation_deg), phis), held_out);
+    for (const evaluate::HeldOutResult& v : result.views) {
       result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
       result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
     }
@@ -102,4 +102,4 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   return result;
 }
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 
 struct DemoOptions {
   std::filesystem::path scene;       // default: the built-in sim/scenes/default.yaml
@@ -26,4 +26,4 @@ struct DemoSummary {
 
 DemoSummary RunDemo(const DemoOptions& options);
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

@@ -9,7 +9,7 @@
 
 #include "evaluate/held_out.h"
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 
 struct StudySettings {
   std::filesystem::path scene;           // base scene (default: sim/scenes/default.yaml)
@@ -29,7 +29,7 @@ struct StudySettings {
 };
 
 struct StudyResult {
-  std::vector<HeldOutResult> views;
+  std::vector<evaluate::HeldOutResult> views;
   double mean_psnr_whole = 0, mean_psnr_sample = 0;  // dB, averaged over views
   double brdf_error = 0;          // brdf::LogCosineError against the scene's sample
   double capture_time_s = 0;      // the rig's virtual clock: moves + exposures + downloads
@@ -40,4 +40,4 @@ struct StudyResult {
 
 StudyResult RunStudyPoint(const StudySettings& settings);
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

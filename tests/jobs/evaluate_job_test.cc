@@ -1,5 +1,5 @@
 // `brdfrig evaluate` as a library call: a material judged against a small simulated scene.
-#include "evaluate/evaluate_job.h"
+#include "jobs/evaluate_job.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 namespace {
 
 namespace fs = std::filesystem;
@@ -58,4 +58,4 @@ TEST(EvaluateJobTest, MalformedMaterialIsAFileErrorNamingIt) {
 }
 
 }  // namespace
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

@@ -1,4 +1,4 @@
-#include "evaluate/demo.h"
+#include "jobs/demo.h"
 
 #include <chrono>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "sim/devices.h"
 #include "sim/scene.h"
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 namespace {
 
 namespace fs = std::filesystem;
@@ -116,18 +116,19 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   start = std::chrono::steady_clock::now();
   std::vector<double> phis;
   for (double d : options.view_phis_deg) phis.push_back(Radians(d));
-  HeldOutOptions held_out_options;
+  evaluate::HeldOutOptions held_out_options;
   held_out_options.keep_images = true;
-  const std::vector<HeldOutResult> views = EvaluateHeldOut(
-      scene, fitted, OrientationViews(Radians(options.view_elevation_deg), phis), held_out_options);
+  const std::vector<evaluate::HeldOutResult> views = evaluate::EvaluateHeldOut(
+      scene, fitted, evaluate::OrientationViews(Radians(options.view_elevation_deg), phis),
+      held_out_options);
   const double evaluate_s = SecondsSince(start);
 
   // 4. BRDF-space error and energy.
   say("[4/4] BRDF error and report");
 
-  Report report;
+  evaluate::Report report;
   report.title = "brdfrig demo: " + scene.Summary();
-  ReportSection overview{"Overview", {}, {}, {}, {}};
+  evaluate::ReportSection overview{"Overview", {}, {}, {}, {}};
   overview.paragraphs.push_back(
       "A capture of " + options.scene.string() + " by the acquisition engine with simulated " +
       "devices (session in session/: " + std::to_string(capture.positions.size()) +
@@ -142,11 +143,12 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
        {{Fixed(capture_s, 1), Fixed(reconstruct_s, 1), Fixed(evaluate_s, 1)}}});
   report.sections.push_back(overview);
 
-  ReportSection recon{"Reconstruction", {}, {}, {}, {}};
-  Table positions{"Per capture position",
-                  {"position", "theta_in (deg)", "pose RMS (px)", "camera vs nominal (mm)", "light",
-                   "light vs nominal (deg)", "clipped", "samples"},
-                  {}};
+  evaluate::ReportSection recon{"Reconstruction", {}, {}, {}, {}};
+  evaluate::Table positions{
+      "Per capture position",
+      {"position", "theta_in (deg)", "pose RMS (px)", "camera vs nominal (mm)", "light",
+       "light vs nominal (deg)", "clipped", "samples"},
+      {}};
   for (const auto& p : result.positions) {
     if (!p.used) {
       positions.rows.push_back({std::to_string(p.index), "skipped: " + p.skipped_reason});
@@ -160,9 +162,10 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
                               Fixed(p.invalid_fraction, 4), std::to_string(p.samples)});
   }
   recon.tables.push_back(positions);
-  Table slices{"Fitted slices (A1, A2 in 1/sr; h, x0 in degrees), green channel ± 1 sigma",
-               {"theta_in (deg)", "A1", "A2", "h", "x0", "residual (ln)", "warnings"},
-               {}};
+  evaluate::Table slices{
+      "Fitted slices (A1, A2 in 1/sr; h, x0 in degrees), green channel ± 1 sigma",
+      {"theta_in (deg)", "A1", "A2", "h", "x0", "residual (ln)", "warnings"},
+      {}};
   for (std::size_t i = 0; i < result.material.slices.size(); ++i) {
     const auto& s = result.material.slices[i];
     const auto& d = result.material.diagnostics[i];
@@ -180,8 +183,8 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   for (const auto& w : result.warnings) recon.paragraphs.push_back("warning: " + w);
   report.sections.push_back(recon);
 
-  report.sections.push_back(HeldOutSection(views, options.view_elevation_deg, out));
-  report.sections.push_back(BrdfSection(*scene.sample.brdf, fitted));
+  report.sections.push_back(evaluate::HeldOutSection(views, options.view_elevation_deg, out));
+  report.sections.push_back(evaluate::BrdfSection(*scene.sample.brdf, fitted));
 
   report.WriteHtml(out);
   DemoSummary summary;
@@ -191,4 +194,4 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   return summary;
 }
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs

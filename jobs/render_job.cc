@@ -1,4 +1,4 @@
-#include "evaluate/render_job.h"
+#include "jobs/render_job.h"
 
 #include <Eigen/Geometry>
 #include <chrono>
@@ -14,7 +14,7 @@
 #include "sim/scene.h"
 #include "sim/simulator.h"
 
-namespace brdfrig::evaluate {
+namespace brdfrig::jobs {
 namespace {
 
 render::Mesh MeshByName(const std::string& name) {
@@ -82,8 +82,8 @@ RenderJobSummary RunRenderJob(const RenderJobOptions& options) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   summary.width = radiance.cols;
   summary.height = radiance.rows;
-  WriteImageFile(options.output, radiance);
+  evaluate::WriteImageFile(options.output, radiance);
   return summary;
 }
 
-}  // namespace brdfrig::evaluate
+}  // namespace brdfrig::jobs
