@@ -8,6 +8,7 @@
 
 #include "acquire/local_socket.h"
 #include "acquire/plan_check.h"
+#include "acquire/progress_json.h"
 #include "acquire/session_store.h"
 #include "session/session_reader.h"
 
@@ -26,19 +27,6 @@ constexpr const char* kDaemonStopped = "daemon stopped";
 HttpResponse Json(int status, const json& body) { return {status, body.dump()}; }
 HttpResponse Fail(int status, const std::string& reason) {
   return Json(status, json{{"error", reason}});
-}
-
-json ProgressJson(const RunProgress& p) {
-  return json{{"state", RunStateName(p.state)},
-              {"position", p.position},
-              {"positions", p.positions},
-              {"frame", p.frame},
-              {"frames_per_position", p.frames_per_position},
-              {"frames_recorded", p.frames_recorded},
-              {"frames_total", p.frames_total},
-              {"eta_s", p.eta_s},
-              {"last_saturation", p.last_saturation},
-              {"message", p.message}};
 }
 
 // Whether a stopped session should be offered (or automatically given) a resume.
@@ -224,7 +212,7 @@ HttpResponse Daemon::Status() {
             {"session", running_.empty() ? json() : json(running_)},
             {"queue", queue},
             {"last_result", last_result_}};
-  if (progress_) body["progress"] = ProgressJson(*progress_);
+  if (progress_) body["progress"] = ProgressToJson(*progress_);
   return Json(200, body);
 }
 

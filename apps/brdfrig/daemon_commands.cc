@@ -8,6 +8,7 @@
 
 #include "acquire/daemon.h"
 #include "acquire/daemon_client.h"
+#include "acquire/progress_json.h"
 #include "apps/brdfrig/progress_line.h"
 #include "common/atomic_file.h"
 
@@ -41,32 +42,12 @@ acquire::DaemonClient Connect(const ClientArgs& args) {
   throw OptionsError("where is the daemon? give --socket, --config or $BRDFRIG_SOCKET");
 }
 
-acquire::RunProgress ProgressFromJson(const json& p) {
-  acquire::RunProgress progress;
-  const std::string state = p.value("state", "idle");
-  for (auto s :
-       {acquire::RunState::kIdle, acquire::RunState::kMoving, acquire::RunState::kAcquiring,
-        acquire::RunState::kPaused, acquire::RunState::kFault, acquire::RunState::kDone}) {
-    if (state == acquire::RunStateName(s)) progress.state = s;
-  }
-  progress.position = p.value("position", 0);
-  progress.positions = p.value("positions", 0);
-  progress.frame = p.value("frame", 0);
-  progress.frames_per_position = p.value("frames_per_position", 0);
-  progress.frames_recorded = p.value("frames_recorded", 0);
-  progress.frames_total = p.value("frames_total", 0);
-  progress.eta_s = p.value("eta_s", 0.0);
-  progress.last_saturation = p.value("last_saturation", 0.0);
-  progress.message = p.value("message", "");
-  return progress;
-}
-
 // Shows the progress until the daemon is idle (every queued session done).
 void Follow(acquire::DaemonClient& client) {
   ProgressLine line;
   for (;;) {
     const json status = client.Status();
-    if (status.contains("progress")) line.Show(ProgressFromJson(status["progress"]));
+    if (status.contains("progress")) line.Show(acquire::ProgressFromJson(status["progress"]));
     if (status["state"] == "idle" && status["queue"].empty()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
   }
@@ -81,7 +62,7 @@ void PrintStatus(const json& status) {
   }
   std::printf("\n");
   if (status.contains("progress")) {
-    const acquire::RunProgress p = ProgressFromJson(status["progress"]);
+    const acquire::RunProgress p = acquire::ProgressFromJson(status["progress"]);
     std::printf(
         "  %s, position %d/%d, frame %d/%d, %d/%d frames recorded, ETA %.0f s, last "
         "frame %.2f%% saturated\n",
