@@ -1,15 +1,18 @@
 #include "jobs/study.h"
 
+#include <stdlib.h>
+
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <regex>
+#include <memory>
 
 #include "brdf/metrics.h"
 #include "common/angles.h"
-#include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/yaml_reader.h"
 #include "reconstruct/batch.h"
+#include "sim/effects.h"
+#include "sim/sample_brdf.h"
 #include "sim/scene.h"
 #include "sim/simulate.h"
 
@@ -18,87 +21,113 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The base scene with the study's replacements: resolution (same field of view: the focal
-// length is in mm), the sample's BRDF, the sensor format and the effects list.
-std::string StudyScene(std::string text, const StudySettings& s) {
-  const auto replace = [&](const std::string& pattern, const std::string& with) {
-    const std::regex re(pattern);
-    if (!std::regex_search(text, re)) {
-      throw OptionsError("study: the base scene has no line matching '" + pattern + "'");
-    }
-    text = std::regex_replace(text, re, with, std::regex_constants::format_first_only);
-  };
+// The base scene, loaded, with the study's changes: resolution (same field of view: the focal
+// length in pixels and the principal point follow the image size), the sample's BRDF, the
+// sensor format and the effects list. Files the changes name resolve against the base scene's
+// folder, as the scene's own do.
+sim::Scene StudyScene(const fs::path& base, const StudySettings& s) {
+  sim::Scene scene = sim::LoadScene(base);
   if (s.width != 0) {
-    replace("resolution: \\[[0-9]+, *[0-9]+\\]",
-            "resolution: [" + std::to_string(s.width) + ", " + std::to_string(s.height) + "]");
+    geometry::Intrinsics& k = scene.rig.intrinsics;
+    const double sx = static_cast<double>(s.width) / k.width;
+    const double sy = static_cast<double>(s.height) / k.height;
+    k.fx *= sx;
+    k.fy *= sx;
+    k.cx *= sx;
+    k.cy *= sy;
+    k.width = s.width;
+    k.height = s.height;
   }
-  if (!s.sample_brdf.empty()) replace("brdf: \\{[^\n]*\\}", "brdf: " + s.sample_brdf);
-  if (!s.sensor_format.empty()) replace("format: [a-z0-9]+", "format: " + s.sensor_format);
-  if (!s.effects.empty()) {
-    // The effects list is the scene's last section.
-    const auto at = text.find("\neffects:");
-    if (at == std::string::npos) throw OptionsError("study: the base scene has no effects list");
-    text = text.substr(0, at) + "\neffects: " + s.effects + "\n";
+  if (!s.sample_brdf.empty()) {
+    scene.sample.brdf = sim::ParseSampleBrdf(LoadYamlString(s.sample_brdf, "study sample_brdf"),
+                                             base.parent_path());
   }
-  return text;
+  if (!s.sensor_format.empty()) {
+    const auto format = sim::PhotoFormatNamed(s.sensor_format);
+    if (!format) {
+      throw OptionsError("StudySettings.sensor_format = " + s.sensor_format +
+                         "; must be png16, tiff16 or jpeg8");
+    }
+    scene.sensor.format = *format;
+  }
+  if (!s.effects.empty())
+    scene.effects = sim::ParseEffects(LoadYamlString(s.effects, "study effects"));
+  return scene;
 }
+
+// A scratch directory the study makes for itself inside work_dir (created when missing), and
+// removes again with everything in it. work_dir itself is removed only when this made it and
+// it is empty: the study never removes a directory it did not create.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const fs::path& parent) : parent_(parent) {
+    created_parent_ = fs::create_directories(parent);
+    std::string name = (parent / "study-XXXXXX").string();
+    if (mkdtemp(name.data()) == nullptr) {
+      throw Error("study: cannot create a scratch directory in " + parent.string());
+    }
+    path_ = name;
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+    if (created_parent_) fs::remove(parent_, ec);  // only when empty
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path parent_, path_;
+  bool created_parent_ = false;
+};
 
 }  // namespace
 
 StudyResult RunStudyPoint(const StudySettings& s) {
   const fs::path base =
       s.scene.empty() ? fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml" : s.scene;
-  if (s.work_dir.empty()) throw OptionsError("study: no work directory");
-  fs::remove_all(s.work_dir);
-  fs::create_directories(s.work_dir);
-  const std::string text = ReadFileToString(base);
-  if (std::regex_search(text, std::regex("file: *[^/ ]"))) {
-    throw FileError(base.string(), "the study copies the scene: name its files by absolute path");
-  }
-  const fs::path scene_file = s.work_dir / "scene.yaml";
-  WriteFileAtomically(scene_file, StudyScene(text, s));
+  if (s.work_dir.empty())
+    throw OptionsError("StudySettings.work_dir is empty; must name a directory");
+  const auto scene = std::make_shared<const sim::Scene>(StudyScene(base, s));
+  const ScratchDir scratch(s.work_dir);
   StudyResult result;
-  try {
-    sim::SimulateOptions simulate;
-    simulate.scene = scene_file;
-    simulate.output_dir = s.work_dir / "capture";
-    simulate.write_truth = false;
-    simulate.exposures = s.exposures;
-    for (double theta : s.position_degrees) {
-      simulate.positions.push_back(
-          {{"camera_arm", Radians(theta)}, {"light_arm", -Radians(theta)}});
-    }
-    result.capture_time_s = sim::Simulate(simulate).virtual_time_s;
-    const sim::Scene scene = sim::LoadScene(scene_file);
-
-    const auto start = std::chrono::steady_clock::now();
-    reconstruct::ReconstructOptions options;
-    options.samples.bin_width = Radians(s.bin_width_deg);
-    options.fit.max_iterations = s.fit_iterations;
-    const reconstruct::ReconstructionResult fit =
-        reconstruct::Reconstruct(reconstruct::LoadCapture(s.work_dir / "capture"), options);
-    result.reconstruct_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result.slices = static_cast<int>(fit.material.slices.size());
-    result.warnings = fit.warnings;
-    const brdf::SliceModel model = fit.material.Model();
-    result.brdf_error = brdf::LogCosineError(*scene.sample.brdf, model);
-
-    std::vector<double> phis;
-    for (double d : s.view_phis_deg) phis.push_back(Radians(d));
-    evaluate::HeldOutOptions held_out;
-    held_out.linear_interpolation = s.linear_interpolation;
-    result.views = evaluate::EvaluateHeldOut(
-        scene, model, evaluate::OrientationViews(Radians(s.view_elevation_deg), phis), held_out);
-    for (const evaluate::HeldOutResult& v : result.views) {
-      result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
-      result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
-    }
-  } catch (...) {
-    fs::remove_all(s.work_dir);
-    throw;
+  sim::SimulateOptions simulate;
+  simulate.scene = base;
+  simulate.loaded_scene = scene;
+  simulate.output_dir = scratch.path() / "capture";
+  simulate.write_truth = false;
+  simulate.exposures = s.exposures;
+  for (double theta : s.position_degrees) {
+    simulate.positions.push_back({{"camera_arm", Radians(theta)}, {"light_arm", -Radians(theta)}});
   }
-  fs::remove_all(s.work_dir);
+  result.capture_time_s = sim::Simulate(simulate).virtual_time_s;
+
+  const auto start = std::chrono::steady_clock::now();
+  reconstruct::ReconstructOptions options;
+  options.samples.bin_width = Radians(s.bin_width_deg);
+  options.fit.max_iterations = s.fit_iterations;
+  // capture.json names the base scene; the nominal geometry is the edited scene's.
+  reconstruct::CaptureSet capture = reconstruct::LoadCapture(scratch.path() / "capture");
+  capture.nominal = scene->rig;
+  const reconstruct::ReconstructionResult fit = reconstruct::Reconstruct(capture, options);
+  result.reconstruct_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.slices = static_cast<int>(fit.material.slices.size());
+  result.warnings = fit.warnings;
+  const brdf::SliceModel model = fit.material.Model();
+  result.brdf_error = brdf::LogCosineError(*scene->sample.brdf, model);
+
+  std::vector<double> phis;
+  for (double d : s.view_phis_deg) phis.push_back(Radians(d));
+  evaluate::HeldOutOptions held_out;
+  held_out.linear_interpolation = s.linear_interpolation;
+  result.views = evaluate::EvaluateHeldOut(
+      *scene, model, evaluate::OrientationViews(Radians(s.view_elevation_deg), phis), held_out);
+  for (const evaluate::HeldOutResult& v : result.views) {
+    result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
+    result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
+  }
   return result;
 }
 

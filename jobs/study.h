@@ -16,7 +16,7 @@ struct StudySettings {
   std::vector<double> position_degrees;  // symmetric arms: camera_arm = θ, light_arm = −θ
   std::vector<double> exposures;         // empty: the scene's
   int width = 0, height = 0;             // 0: the scene's resolution
-  // Replacements for the base scene's lines (YAML flow text; empty: keep the scene's):
+  // Changes to the loaded base scene (YAML flow text; empty: keep the scene's):
   std::string sample_brdf;      // e.g. "{model: ward, alpha: 0.15, specular: 0.3, diffuse: 0.1}"
   std::string sensor_format;    // png16 | jpeg8 | tiff16
   std::string effects;          // e.g. "[{type: shot_noise, full_well: 30000}]"
@@ -25,7 +25,9 @@ struct StudySettings {
   bool linear_interpolation = false;  // render with the seed's linear interpolation
   double view_elevation_deg = 40;
   std::vector<double> view_phis_deg = {0, 30, 60, 90, 120, 150, 180};
-  std::filesystem::path work_dir;  // scratch (the simulated capture)
+  // Scratch space: the study makes a fresh directory inside it (creating work_dir when missing)
+  // and removes only what it made.
+  std::filesystem::path work_dir;
 };
 
 struct StudyResult {

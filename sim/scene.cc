@@ -28,12 +28,8 @@ SampleDescription ParseSample(const YamlNode& node, const std::filesystem::path&
 SensorDescription ParseSensor(const YamlNode& node) {
   SensorDescription s;
   const std::string format = node.Get("format", "png16");
-  if (format == "png16") {
-    s.format = PhotoFormat::kPng16;
-  } else if (format == "tiff16") {
-    s.format = PhotoFormat::kTiff16;
-  } else if (format == "jpeg8") {
-    s.format = PhotoFormat::kJpeg8;
+  if (const auto named = PhotoFormatNamed(format)) {
+    s.format = *named;
   } else {
     node.Required("format").Fail("expected png16, tiff16 or jpeg8, got '" + format + "'");
   }
@@ -167,6 +163,13 @@ SimFault ParseFault(const YamlNode& node, const geometry::RigGeometry& rig) {
 }
 
 }  // namespace
+
+std::optional<PhotoFormat> PhotoFormatNamed(const std::string& name) {
+  if (name == "png16") return PhotoFormat::kPng16;
+  if (name == "tiff16") return PhotoFormat::kTiff16;
+  if (name == "jpeg8") return PhotoFormat::kJpeg8;
+  return std::nullopt;
+}
 
 std::string SensorDescription::Extension() const {
   switch (format) {

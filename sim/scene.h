@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct SampleDescription {
 };
 
 enum class PhotoFormat { kPng16, kTiff16, kJpeg8 };
+
+// The sensor format named as in scene files (png16, tiff16, jpeg8); nullopt for another name.
+std::optional<PhotoFormat> PhotoFormatNamed(const std::string& name);
 
 struct SensorDescription {
   PhotoFormat format = PhotoFormat::kPng16;

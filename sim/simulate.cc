@@ -8,6 +8,7 @@
 #include "common/atomic_file.h"
 #include "sim/devices.h"
 #include "sim/image_io.h"
+#include "sim/scene.h"
 
 namespace brdfrig::sim {
 namespace {
@@ -72,7 +73,8 @@ std::string SimulateSummary::ToString() const {
 SimulateSummary Simulate(const SimulateOptions& options) {
   options.Validate();
   const auto start = std::chrono::steady_clock::now();
-  auto world = std::make_shared<SimWorld>(LoadScene(options.scene));
+  auto world = std::make_shared<SimWorld>(options.loaded_scene ? *options.loaded_scene
+                                                               : LoadScene(options.scene));
   const Scene& scene = world->scene();
   const auto positions = options.positions.empty() ? scene.capture.positions : options.positions;
   const auto exposures = options.exposures.empty() ? scene.capture.exposures : options.exposures;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,8 +16,13 @@
 
 namespace brdfrig::sim {
 
+struct Scene;
+
 struct SimulateOptions {
   std::filesystem::path scene;
+  // When set, this scene (e.g. a loaded scene with edits) is simulated instead of reading
+  // `scene` again; `scene` still names the file recorded in capture.json.
+  std::shared_ptr<const Scene> loaded_scene;
   std::filesystem::path output_dir;
   std::vector<geometry::AxisPositions> positions;  // radians; empty: the scene's capture.positions
   std::vector<double> exposures;                   // seconds; empty: the scene's capture.exposures
