@@ -14,7 +14,7 @@ namespace {
 
 std::string DegreesText(double radians) {
   char text[32];
-  std::snprintf(text, sizeof(text), "%.3f deg", Degrees(radians));
+  std::snprintf(text, sizeof(text), "%.3f deg", brdfrig::Degrees(radians));
   return text;
 }
 

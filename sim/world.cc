@@ -22,9 +22,9 @@ std::uint64_t StableHash(const std::string& text) {
   return h;
 }
 
-std::string Degrees(double radians) {
+std::string DegreesText(double radians) {
   std::ostringstream out;
-  out << Degrees(radians) << "°";
+  out << brdfrig::Degrees(radians) << "°";
   return out.str();
 }
 
@@ -96,8 +96,8 @@ rig::MoveReport SimWorld::MoveAxis(const std::string& axis, double commanded) {
   if (!std::isfinite(commanded) || commanded < geometry.min - 1e-9 ||
       commanded > geometry.max + 1e-9) {
     throw AxisError(AxisError::Kind::kLimits, 0,
-                    "axis '" + axis + "': target " + Degrees(commanded) + " is outside [" +
-                        Degrees(geometry.min) + ", " + Degrees(geometry.max) + "]");
+                    "axis '" + axis + "': target " + DegreesText(commanded) + " is outside [" +
+                        DegreesText(geometry.min) + ", " + DegreesText(geometry.max) + "]");
   }
   ++state.moves;
   for (std::size_t i = 0; i < scene().faults.size(); ++i) {
