@@ -39,8 +39,8 @@ sim::Scene StudyScene(const fs::path& base, const StudySettings& s) {
     k.height = s.height;
   }
   if (!s.sample_brdf.empty()) {
-    scene.sample.brdf = sim::ParseSampleBrdf(LoadYamlString(s.sample_brdf, "study sample_brdf"),
-                                             base.parent_path());
+    const YamlNode root = LoadYamlString("brdf: " + s.sample_brdf, "StudySettings.sample_brdf");
+    scene.sample.brdf = sim::ParseSampleBrdf(root.Required("brdf"), base.parent_path());
   }
   if (!s.sensor_format.empty()) {
     const auto format = sim::PhotoFormatNamed(s.sensor_format);
@@ -50,8 +50,10 @@ sim::Scene StudyScene(const fs::path& base, const StudySettings& s) {
     }
     scene.sensor.format = *format;
   }
-  if (!s.effects.empty())
-    scene.effects = sim::ParseEffects(LoadYamlString(s.effects, "study effects"));
+  if (!s.effects.empty()) {
+    const YamlNode root = LoadYamlString("effects: " + s.effects, "StudySettings.effects");
+    scene.effects = sim::ParseEffects(root.Required("effects"));
+  }
   return scene;
 }
 
