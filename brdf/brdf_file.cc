@@ -1,17 +1,29 @@
 #include "brdf/brdf_file.h"
 
+#include <nlohmann/json.hpp>
+
 #include "brdf/material_file.h"
 #include "brdf/merl.h"
+#include "brdf/nbrdf.h"
+#include "common/atomic_file.h"
 #include "common/error.h"
 
 namespace brdfrig::brdf {
 
 std::shared_ptr<const Brdf> LoadBrdfFile(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
-  if (ext == ".json") return std::make_shared<SliceModel>(ReadMaterialFile(path).Model());
+  if (ext == ".json") {
+    // Both brdfrig models and measured nbrdf fits are JSON; the "format" field tells them apart.
+    const std::string text = ReadFileToString(path);
+    const nlohmann::json doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (doc.is_object() && doc.contains("format") && doc["format"] == "nbrdf-mlp") {
+      return std::make_shared<NeuralBrdf>(NeuralBrdf::Parse(text, path.string()));
+    }
+    return std::make_shared<SliceModel>(ParseMaterial(text, path.string()).Model());
+  }
   if (ext == ".binary") return std::make_shared<MerlTable>(MerlTable::Read(path));
   throw FileError(path.string(), "unknown material file type '" + ext +
-                                     "' (expected material .json or MERL .binary)");
+                                     "' (expected material .json, nbrdf .json or MERL .binary)");
 }
 
 }  // namespace brdfrig::brdf

@@ -1,5 +1,6 @@
-// Loads a material from a file by its kind: a brdfrig model (material.json) or a MERL table
-// (.binary). Throws FileError naming the file for anything else.
+// Loads a material from a file by its kind: a brdfrig model (material.json), a measured nbrdf fit
+// (.json with "format": "nbrdf-mlp") or a MERL table (.binary). Throws FileError naming the file
+// for anything else.
 #pragma once
 
 #include <filesystem>

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "brdf/quadrature.h"
 #include "common/error.h"
 
 namespace brdfrig::brdf {
@@ -48,19 +49,66 @@ double LogCosineError(const Brdf& a, const Brdf& b, const MetricOptions& options
 
 Rgb DirectionalAlbedo(const Brdf& brdf, double theta_in, const MetricOptions& options) {
   options.Validate();
-  // With u = sin^2(theta_o), cos dω = ½ du dφ: the midpoint rule in u samples the cosine-weighted
-  // hemisphere evenly.
-  const Vec3 l = Direction(theta_in, 0);
-  const int nu = 4 * options.theta_steps, np = options.phi_steps;
+  // A sharp lobe is a tiny spot about the mirror direction r: a grid uniform over the hemisphere
+  // misses or over-weights it by up to 20 %. So v is written in polar coordinates about r,
+  // v = cos(a) r + sin(a) (cos(b) e1 + sin(b) e2), dω = sin(a) da db, with
+  //  - while the whole circle of radius a stays above the horizon (a <= pi/2 − theta_in): a
+  //    logarithmic warp a = a0 (exp(k t) − 1), Gauss–Legendre in t (equal resolution at every
+  //    scale of the lobe down to a0), and the periodic trapezoid rule in b (spectral);
+  //  - beyond, the arc above the horizon, |b| <= b_max(a), with Gauss–Legendre in b and a
+  //    cosine map in a that clusters nodes at both ends, where b_max has square-root
+  //    behaviour (so the integrand is smooth in the mapped coordinate).
+  const double theta = std::clamp(theta_in, 0.0, M_PI / 2);
+  const Vec3 l = Direction(theta, 0);
+  const Vec3 r(-l.x(), 0, l.z());
+  const Vec3 e1(l.z(), 0, l.x()), e2 = Vec3::UnitY();  // r, e1, e2 orthonormal; e1.z >= 0
+  constexpr int kOrder = 8;
+  constexpr double kSmallestAngle = 1e-3;  // radians: the warp's scale near the peak
+  const int radial_panels = std::max(2, options.theta_steps / 2);
+  const int nb = options.phi_steps;
+
   Rgb sum = Rgb::Zero();
-  for (int i = 0; i < nu; ++i) {
-    const double u = (i + 0.5) / nu;
-    const double theta_o = std::asin(std::sqrt(u));
-    for (int k = 0; k < np; ++k) {
-      sum += brdf.Eval(l, Direction(theta_o, (k + 0.5) * 2 * M_PI / np), kNormal);
+  // Full circles.
+  const double a_full = M_PI / 2 - theta;
+  if (a_full > 0) {
+    const double k = std::log1p(a_full / kSmallestAngle);
+    const QuadratureRule t_rule = CompositeGaussLegendre(radial_panels, kOrder, 0, 1);
+    for (std::size_t i = 0; i < t_rule.nodes.size(); ++i) {
+      const double e = std::exp(k * t_rule.nodes[i]);
+      const double a = kSmallestAngle * (e - 1), da_dt = kSmallestAngle * k * e;
+      const double ca = std::cos(a), sa = std::sin(a);
+      Rgb ring = Rgb::Zero();
+      for (int j = 0; j < nb; ++j) {
+        const double b = (j + 0.5) * 2 * M_PI / nb;
+        const Vec3 v = ca * r + sa * (std::cos(b) * e1 + std::sin(b) * e2);
+        if (v.z() > 0) ring += brdf.Eval(l, v, kNormal) * v.z();
+      }
+      sum += ring * (2 * M_PI / nb) * sa * da_dt * t_rule.weights[i];
     }
   }
-  return sum * (0.5 * (1.0 / nu) * (2 * M_PI / np));
+  // Arcs cut by the horizon, up to the radius where the circle sinks below it.
+  const double a_end = std::min(M_PI, M_PI / 2 + theta);
+  if (theta > 0 && a_end > a_full) {
+    const QuadratureRule u_rule =
+        CompositeGaussLegendre(std::max(1, radial_panels / 2), kOrder, 0, 1);
+    const QuadratureRule b_unit = GaussLegendre(std::max(2, nb / 2), -1, 1);
+    for (std::size_t i = 0; i < u_rule.nodes.size(); ++i) {
+      const double u = u_rule.nodes[i];
+      const double a = a_full + (a_end - a_full) * 0.5 * (1 - std::cos(M_PI * u));
+      const double da_du = (a_end - a_full) * 0.5 * M_PI * std::sin(M_PI * u);
+      const double ca = std::cos(a), sa = std::sin(a);
+      // v.z = ca r.z + sa cos(b) e1.z > 0  <=>  cos(b) > −ca r.z / (sa e1.z).
+      const double b_max = std::acos(std::clamp(-ca * r.z() / (sa * e1.z()), -1.0, 1.0));
+      Rgb arc = Rgb::Zero();
+      for (std::size_t j = 0; j < b_unit.nodes.size(); ++j) {
+        const double b = b_max * b_unit.nodes[j];
+        const Vec3 v = ca * r + sa * (std::cos(b) * e1 + std::sin(b) * e2);
+        if (v.z() > 0) arc += brdf.Eval(l, v, kNormal) * (v.z() * b_unit.weights[j]);
+      }
+      sum += arc * b_max * sa * da_du * u_rule.weights[i];
+    }
+  }
+  return sum;
 }
 
 double ReciprocityError(const Brdf& brdf, const MetricOptions& options) {

@@ -1,13 +1,13 @@
 // Finding the paper mask's cut-out in an HDR image and the camera pose from its corners.
 //
-// The search starts from the cut-out as the rig's nominal pose projects it: along each of the
-// four edges, profiles across the edge are sampled in log luminance (so the contrast is a ratio,
-// whatever the exposure) and the strongest step within the search band gives an edge point,
-// refined to sub-pixel by a parabola through the gradient peak. Profiles without a clear step
-// (the sample as bright as the paper there, an occluding object) are dropped; the rest give a
-// robust line per edge, and the corners are the lines' intersections — so a corner hidden from
-// view is still found. The sample may be brighter (a highlight) or darker than the paper: the
-// step's sign is not assumed.
+// The search starts from the cut-out as the rig's nominal pose projects it: each of the four
+// edges is a robust line through the steps found on profiles across it (reconstruct/edge_line.h:
+// log radiance per colour channel, either sign, several candidates per profile, RANSAC), and
+// the corners are the lines' intersections — so a corner hidden from view is still found.
+// Where a side of the cut-out shows too little contrast along its whole length (a sample as
+// bright and as coloured as the paper there), the paper's outline joins in: every crossing of
+// a found x = const edge with a found y = const edge is a known point of the plane, a planar
+// PnP on them gives the pose and the cut-out's corners are its projections.
 #pragma once
 
 #include <array>
@@ -19,11 +19,12 @@
 namespace brdfrig::reconstruct {
 
 struct TargetOptions {
-  double search_band = 0.15;        // half-width of the search band, fraction of the cut-out's size
-  double corner_skip = 0.08;        // edge fraction near each corner not sampled (shadows, blur)
-  double profile_step_px = 2;       // spacing of profiles along an edge
-  double min_log_step = 0.2;        // weakest accepted step in ln(luminance) across an edge
-  double min_edge_fraction = 0.25;  // fewest accepted profiles per edge, as a fraction
+  double search_band = 0.15;       // half-width of the search band, fraction of the cut-out's size
+  double corner_skip = 0.08;       // edge fraction near each corner not sampled (shadows, blur)
+  double profile_step_px = 2;      // spacing of profiles along an edge
+  double min_log_step = 0.2;       // weakest accepted step, |Δ ln(radiance)| over RGB
+  double min_edge_fraction = 0.2;  // fewest collinear steps per edge, fraction of its profiles
+  bool use_paper_outline = true;   // the paper's outer edges help when a cut-out edge is weak
   double max_reprojection_px = 2.0;  // a pose worse than this is refused
   // A measured camera this far from the rig's nominal one is used, with a warning: either the
   // rig file is off or the edges were found on badly exposed photos.
@@ -35,8 +36,10 @@ struct TargetOptions {
 // (-w/2,-h/2), (+w/2,-h/2), (+w/2,+h/2), (-w/2,+h/2) on the plane z = 0.
 struct TargetCorners {
   std::array<cv::Point2d, 4> corners;
-  std::array<int, 4> edge_points{};  // accepted profiles per edge
+  std::array<int, 4> edge_points{};  // accepted profiles per edge (0: the edge was not found)
   double line_rms_px = 0;            // RMS distance of edge points to their lines
+  int cutout_edges_found = 0;        // 4: corners are the edges' crossings
+  int paper_edges_found = 0;         // searched only when a cut-out edge was not found
 };
 
 struct PoseEstimate {
@@ -46,7 +49,7 @@ struct PoseEstimate {
   double nominal_disagreement_m = 0;  // |measured centre - nominal centre|
 };
 
-// Throws brdfrig::Error ("target not found: ...") when an edge has too few clear profiles.
+// Throws brdfrig::Error ("target not found: ...") when the edges found do not fix the corners.
 TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
                                 const geometry::Intrinsics& intrinsics,
                                 const geometry::CameraPose& nominal,

@@ -3,6 +3,7 @@
 #include "brdf/analytic.h"
 #include "brdf/material_file.h"
 #include "brdf/merl.h"
+#include "brdf/nbrdf_library.h"
 #include "sim/yaml_values.h"
 
 namespace brdfrig::sim {
@@ -27,6 +28,25 @@ auto FromFile(const YamlNode& node, const std::filesystem::path& base_dir, Load 
     return load(path);
   } catch (const Error& e) {
     file.Fail(e.what());
+  }
+}
+
+// A measured material: one of the shipped ones by name, or any nbrdf file; exactly one of them.
+std::shared_ptr<const brdf::Brdf> ParseNbrdf(const YamlNode& node,
+                                             const std::filesystem::path& base_dir) {
+  const std::optional<YamlNode> name = node.Optional("name");
+  if (name.has_value() == node.Has("file")) {
+    node.Fail("an nbrdf sample needs either 'name' (a shipped material) or 'file', not both");
+  }
+  if (!name) {
+    return FromFile(node, base_dir, [](const std::filesystem::path& path) {
+      return std::make_shared<brdf::NeuralBrdf>(brdf::NeuralBrdf::Read(path));
+    });
+  }
+  try {
+    return std::make_shared<brdf::NeuralBrdf>(brdf::ReadNbrdfMaterial(name->AsString()));
+  } catch (const Error& e) {
+    name->Fail(e.what());
   }
 }
 
@@ -65,9 +85,12 @@ std::shared_ptr<const brdf::Brdf> ParseSampleBrdf(const YamlNode& node,
     result = FromFile(node, base_dir, [](const std::filesystem::path& path) {
       return std::make_shared<brdf::MerlTable>(brdf::MerlTable::Read(path));
     });
+  } else if (model == "nbrdf") {
+    result = ParseNbrdf(node, base_dir);
   } else {
     model_node.Fail("unknown model '" + model +
-                    "' (known: ggx, cook_torrance, ward, blinn_phong, lambert, slices, merl)");
+                    "' (known: ggx, cook_torrance, ward, blinn_phong, lambert, slices, merl, "
+                    "nbrdf)");
   }
   node.Finish();
   return result;

@@ -4,6 +4,8 @@
 //   {model: blinn_phong, diffuse: RGB, specular: RGB, exponent: e}
 //   {model: lambert, albedo: RGB}
 //   {model: slices, file: material.json}    {model: merl, file: name.binary}
+//   {model: nbrdf, name: gold-metallic-paint}  (a measured material in data/materials/nbrdf/)
+//   {model: nbrdf, file: fit.json}             (any nbrdf-mlp file, relative to the scene)
 #pragma once
 
 #include <filesystem>

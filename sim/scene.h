@@ -2,7 +2,7 @@
 // reference with an example is docs/sim_scene.md; sim/scenes/default.yaml is the shipped scene.
 //
 //   rig:        geometry::ParseRigGeometry (camera, light, axes, target = paper mask with cut-out)
-//   sample:     {brdf: {model: ggx|cook_torrance|ward|blinn_phong|lambert|slices|merl, ...},
+//   sample:     {brdf: {model: ggx|cook_torrance|ward|blinn_phong|lambert|slices|merl|nbrdf, ...},
 //                size: [w, h]}
 //   background: {albedo: grey or [r, g, b]}       the table around the paper (Lambertian)
 //   sensor:     {format: png16|tiff16|jpeg8, gain, jpeg_quality, shutter_speeds, model}

@@ -1,0 +1,180 @@
+#include "brdf/nbrdf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+
+namespace brdfrig::brdf {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "nbrdf-mlp";
+constexpr int kVersion = 1;
+
+// Reads the document, naming the file and the JSON path of whatever is wrong.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void Fail(const std::string& path, const std::string& message) const {
+    throw FileError(source_, (path.empty() ? "" : path + ": ") + message);
+  }
+
+  const json& Field(const json& object, const std::string& path, const char* key) const {
+    if (!object.is_object()) Fail(path, "expected an object");
+    const auto it = object.find(key);
+    if (it == object.end()) Fail(Join(path, key), "missing");
+    return *it;
+  }
+
+  std::string String(const json& object, const std::string& path, const char* key) const {
+    const json& value = Field(object, path, key);
+    if (!value.is_string()) Fail(Join(path, key), "expected a string, got " + value.dump());
+    return value.get<std::string>();
+  }
+
+  double Number(const json& value, const std::string& path) const {
+    if (!value.is_number()) Fail(path, "expected a number, got " + value.dump());
+    const double x = value.get<double>();
+    if (!std::isfinite(x)) Fail(path, "must be finite");
+    return x;
+  }
+
+  // A vector of exactly `size` finite numbers.
+  template <std::size_t N>
+  void Vector(const json& value, const std::string& path, std::array<double, N>* out) const {
+    if (!value.is_array() || value.size() != N) {
+      Fail(path, "expected an array of " + std::to_string(N) + " numbers");
+    }
+    for (std::size_t i = 0; i < N; ++i) {
+      (*out)[i] = Number(value[i], path + "[" + std::to_string(i) + "]");
+    }
+  }
+
+  // A rows × cols matrix as an array of rows.
+  template <std::size_t R, std::size_t C>
+  void Matrix(const json& value, const std::string& path,
+              std::array<std::array<double, C>, R>* out) const {
+    if (!value.is_array() || value.size() != R) {
+      Fail(path, "expected " + std::to_string(R) + " rows of " + std::to_string(C) + " numbers");
+    }
+    for (std::size_t i = 0; i < R; ++i)
+      Vector(value[i], path + "[" + std::to_string(i) + "]", &(*out)[i]);
+  }
+
+  static std::string Join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+ private:
+  std::string source_;
+};
+
+// One layer's weights, bias and activation, checked against the shapes the network must have.
+template <std::size_t In, std::size_t Out>
+void ParseLayer(const Reader& r, const json& layers, int index, const char* activation,
+                std::array<std::array<double, Out>, In>* weights, std::array<double, Out>* bias) {
+  const std::string path = "layers[" + std::to_string(index) + "]";
+  const json& layer = layers[index];
+  r.Matrix(r.Field(layer, path, "weights"), Reader::Join(path, "weights"), weights);
+  r.Vector(r.Field(layer, path, "bias"), Reader::Join(path, "bias"), bias);
+  const std::string got = r.String(layer, path, "activation");
+  if (got != activation) {
+    r.Fail(Reader::Join(path, "activation"),
+           std::string("expected \"") + activation + "\", got \"" + got + "\"");
+  }
+}
+
+// An orthonormal frame with n as its z axis (Duff et al.'s branchless construction). The
+// material is isotropic, so which tangent is chosen does not matter.
+void Frame(const Vec3& n, Vec3* t, Vec3* b) {
+  const double sign = std::copysign(1.0, n.z());
+  const double a = -1.0 / (sign + n.z());
+  const double c = n.x() * n.y() * a;
+  *t = Vec3(1 + sign * n.x() * n.x() * a, sign * c, -sign * n.x());
+  *b = Vec3(c, sign + n.y() * n.y() * a, -n.y());
+}
+
+}  // namespace
+
+NeuralBrdf NeuralBrdf::Parse(const std::string& json_text, const std::string& source_name) {
+  const Reader r(source_name);
+  json doc;
+  try {
+    doc = json::parse(json_text);
+  } catch (const json::exception& e) {  // syntax, or a number out of range
+    r.Fail("", std::string("not valid JSON (") + e.what() + ")");
+  }
+  const json& format = r.Field(doc, "", "format");
+  if (format != kFormat) {
+    r.Fail("format", std::string("expected \"") + kFormat + "\", got " + format.dump());
+  }
+  const json& version = r.Field(doc, "", "version");
+  if (version != kVersion) {
+    r.Fail("version",
+           "this brdfrig reads version " + std::to_string(kVersion) + ", got " + version.dump());
+  }
+  NeuralBrdf out;
+  out.name_ = r.String(doc, "", "name");
+  out.database_ = doc.contains("database") ? r.String(doc, "", "database") : "";
+  const json& layers = r.Field(doc, "", "layers");
+  if (!layers.is_array() || layers.size() != 3) {
+    r.Fail("layers", "expected 3 layers (6→21, 21→21, 21→3)");
+  }
+  ParseLayer(r, layers, 0, "relu", &out.w1_, &out.b1_);
+  ParseLayer(r, layers, 1, "relu", &out.w2_, &out.b2_);
+  ParseLayer(r, layers, 2, "exp_minus_one", &out.w3_, &out.b3_);
+  return out;
+}
+
+NeuralBrdf NeuralBrdf::Read(const std::filesystem::path& path) {
+  return Parse(ReadFileToString(path), path.string());
+}
+
+Rgb NeuralBrdf::Eval(const Vec3& l, const Vec3& v, const Vec3& n) const {
+  Vec3 t, b;
+  Frame(n, &t, &b);
+  return EvalLocal(Vec3(l.dot(t), l.dot(b), l.dot(n)), Vec3(v.dot(t), v.dot(b), v.dot(n)));
+}
+
+Rgb NeuralBrdf::EvalLocal(const Vec3& l, const Vec3& v) const {
+  if (l.z() <= 0 || v.z() <= 0) return Rgb::Zero();
+  const Vec3 h = (l + v).normalized();
+  // θh and φh without trigonometric calls: cos θh = h.z, sin θh = |h.xy|, and (cos φh, sin φh)
+  // = h.xy / |h.xy| (φh = 0 where h = n, as atan2(0, 0) gives).
+  const double sin_h = std::hypot(h.x(), h.y());
+  const double cos_h = h.z();
+  double cos_p = 1, sin_p = 0;
+  if (sin_h > 0) {
+    cos_p = h.x() / sin_h;
+    sin_p = h.y() / sin_h;
+  }
+  // d = R_y(−θh) · R_z(−φh) · l.
+  const double x1 = cos_p * l.x() + sin_p * l.y();
+  const double y1 = -sin_p * l.x() + cos_p * l.y();
+  const Vec3 d = Vec3(cos_h * x1 - sin_h * l.z(), y1, sin_h * x1 + cos_h * l.z()).normalized();
+
+  const std::array<double, kInputs> x = {sin_h, 0.0, cos_h, d.x(), d.y(), d.z()};
+  std::array<double, kHidden> a1 = b1_;
+  for (int i = 0; i < kInputs; ++i) {
+    for (int j = 0; j < kHidden; ++j) a1[j] += x[i] * w1_[i][j];
+  }
+  for (double& a : a1) a = std::max(a, 0.0);
+  std::array<double, kHidden> a2 = b2_;
+  for (int i = 0; i < kHidden; ++i) {
+    for (int j = 0; j < kHidden; ++j) a2[j] += a1[i] * w2_[i][j];
+  }
+  for (double& a : a2) a = std::max(a, 0.0);
+  std::array<double, kOutputs> y = b3_;
+  for (int i = 0; i < kHidden; ++i) {
+    for (int j = 0; j < kOutputs; ++j) y[j] += a2[i] * w3_[i][j];
+  }
+  return Rgb(std::max(std::expm1(y[0]), 0.0), std::max(std::expm1(y[1]), 0.0),
+             std::max(std::expm1(y[2]), 0.0));
+}
+
+}  // namespace brdfrig::brdf
