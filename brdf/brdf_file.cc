@@ -8,7 +8,7 @@ namespace brdfrig::brdf {
 
 std::shared_ptr<const Brdf> LoadBrdfFile(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
-  if (ext == ".json") return std::make_shared<SliceModel>(ReadMaterialFile(path).Model());
+  if (ext == ".json") return ReadMaterialFile(path).Model();
   if (ext == ".binary") return std::make_shared<MerlTable>(MerlTable::Read(path));
   throw FileError(path.string(), "unknown material file type '" + ext +
                                      "' (expected material .json or MERL .binary)");
