@@ -1,5 +1,8 @@
 // Frame time of the 50K-triangle test object at 1280×720 with each material shader, in one run,
-// as a ratio to Lambert (the floor of any shading). Run: build/release/bench/bench_render_frame
+// as a ratio to Lambert (the floor of any shading): the seed's slices, the reference GGX, the
+// model ladder's microfacet rungs (ggx, beckmann, the data-driven table: issue 14 asks the
+// default rung for <= 1.5x Lambert) and a MERL table.
+// Run: build/release/bench/bench_render_frame [frames per round]
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cstdio>
@@ -7,6 +10,8 @@
 
 #include "brdf/analytic.h"
 #include "brdf/merl.h"
+#include "brdf/microfacet_model.h"
+#include "brdf/microfacet_terms.h"
 #include "brdf/slice_model.h"
 #include "render/gl_context.h"
 #include "render/renderer.h"
@@ -24,6 +29,27 @@ brdf::SliceModel SixSlices() {
     slices.push_back(s);
   }
   return brdf::SliceModel(slices);
+}
+
+// A ladder rung with the reference GGX's colours; `table` adds a 32-knot ln D table sampled
+// from GGX(alpha) up to 40° with a tail, and five Fresnel knots (the most work per pixel).
+brdf::MicrofacetModel Rung(brdf::Distribution distribution, bool fresnel_knots) {
+  brdf::MicrofacetModelParams p;
+  p.distribution = distribution;
+  p.diffuse = brdf::Rgb(0.1, 0.05, 0.03);
+  p.f0 = brdf::Rgb(0.9, 0.6, 0.35);
+  p.alpha = 0.1;
+  if (fresnel_knots) p.fresnel_knots = {0, -0.05, 0.1, -0.2, 0.3};
+  if (distribution == brdf::Distribution::kTable) {
+    const int knots = 32;
+    p.max_theta_h = 40 * M_PI / 180;
+    p.shadowing_alpha = 0.1;
+    for (int k = 0; k < knots; ++k) {
+      const double theta = brdf::microfacet::TableKnotThetaH(k, knots, p.max_theta_h);
+      p.log_d.push_back(brdf::microfacet::LogGgxD(std::cos(theta), 0.1));
+    }
+  }
+  return brdf::MicrofacetModel(p);
 }
 
 render::View MakeView() {
@@ -71,7 +97,15 @@ int main(int argc, char** argv) {
   };
   std::vector<Entry> entries;
   entries.push_back({"lambert", render::GpuMaterial::Lambert(brdf::Rgb::Constant(0.5))});
-  entries.push_back({"ggx", render::GpuMaterial::Ggx(ggx)});
+  entries.push_back({"ggx (reference)", render::GpuMaterial::Ggx(ggx)});
+  entries.push_back(
+      {"rung ggx", render::GpuMaterial::Microfacet(Rung(brdf::Distribution::kGgx, false))});
+  entries.push_back({"rung beckmann",
+                     render::GpuMaterial::Microfacet(Rung(brdf::Distribution::kBeckmann, false))});
+  entries.push_back({"rung microfacet (32-knot table)",
+                     render::GpuMaterial::Microfacet(Rung(brdf::Distribution::kTable, false))});
+  entries.push_back({"rung microfacet (table + 5 Fresnel knots)",
+                     render::GpuMaterial::Microfacet(Rung(brdf::Distribution::kTable, true))});
   entries.push_back({"slice model (spline)", render::GpuMaterial::SliceModel(SixSlices())});
   auto linear = render::GpuMaterial::SliceModel(SixSlices());
   linear->SetLinearInterpolation(true);
