@@ -14,4 +14,11 @@ std::shared_ptr<const Brdf> LoadBrdfFile(const std::filesystem::path& path) {
                                      "' (expected material .json or MERL .binary)");
 }
 
+void ExportMerlFile(const std::filesystem::path& material, const std::filesystem::path& output) {
+  if (output.extension() != ".binary") {
+    throw FileError(output.string(), "a MERL table's file name must end in .binary");
+  }
+  MerlTable::Tabulate(*LoadBrdfFile(material)).Write(output);
+}
+
 }  // namespace brdfrig::brdf
