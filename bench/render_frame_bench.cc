@@ -2,7 +2,9 @@
 // as a ratio to Lambert (the floor of any shading): the seed's slices, the reference GGX, the
 // model ladder's microfacet rungs (ggx, beckmann, the data-driven table: issue 14 asks the
 // default rung for <= 1.5x Lambert) and a MERL table.
-// Run: build/release/bench/bench_render_frame [frames per round]
+// Run: build/release/bench/bench_render_frame [frames per round] [rounds]
+// On a shared machine use short rounds and many of them: the best round of each shader is the
+// one least disturbed by other work.
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cstdio>
@@ -83,6 +85,7 @@ double MillisecondsPerFrame(render::Renderer& renderer, const render::View& view
 
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::stoi(argv[1]) : 20;
+  const int rounds = argc > 2 ? std::stoi(argv[2]) : 3;
   auto context = render::CreateHeadlessContext();
   std::printf("GL: %s\n", context->Description().c_str());
   const render::Mesh mesh = render::MakeTestObject(50000);
@@ -115,14 +118,14 @@ int main(int argc, char** argv) {
 
   // Interleave rounds so machine noise hits every shader alike; keep each shader's best round.
   std::vector<double> best(entries.size(), 1e300);
-  for (int round = 0; round < 3; ++round) {
+  for (int round = 0; round < rounds; ++round) {
     for (std::size_t i = 0; i < entries.size(); ++i) {
       best[i] = std::min(
           best[i], MillisecondsPerFrame(renderer, view, gpu_mesh, *entries[i].material, frames));
     }
   }
-  std::printf("%zu triangles, 1280x720, %d frames x 3 rounds (best round)\n\n",
-              mesh.TriangleCount(), frames);
+  std::printf("%zu triangles, 1280x720, %d frames x %d rounds (best round)\n\n",
+              mesh.TriangleCount(), frames, rounds);
   std::printf("| shader | ms/frame | frames/s | x Lambert |\n|---|---:|---:|---:|\n");
   for (std::size_t i = 0; i < entries.size(); ++i) {
     std::printf("| %s | %.2f | %.1f | %.2f |\n", entries[i].name.c_str(), best[i], 1000.0 / best[i],

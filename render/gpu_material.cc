@@ -68,7 +68,8 @@ std::vector<float> MicrofacetBlock(const brdf::MicrofacetModel& model) {
     table[0] = static_cast<float>(1 / p.max_theta_h);
     table[1] = static_cast<float>(knots - 1);
     table[2] = static_cast<float>(p.max_theta_h);
-    table[3] = static_cast<float>(log_d.back() + 2 * std::log(a2 * c * c + s * s));
+    const double denom = a2 * c * c + s * s;
+    table[3] = static_cast<float>(std::min(std::exp(log_d.back()) * denom * denom, 1e38));
   }
   const double fresnel_count = static_cast<double>(p.fresnel_knots.size());
   fresnel_scale[0] = static_cast<float>(fresnel_count);

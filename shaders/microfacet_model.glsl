@@ -18,7 +18,7 @@ layout(std140, binding = 0) uniform MicrofacetBlock {
   // z: alpha of D (Beckmann's G1 needs it unsquared)
   vec4 uRoughness;
   // x: 1 / max_theta_h, y: knots − 1, z: max_theta_h,
-  // w: ln D at max_theta_h + 2 ln(alpha² cos² + sin²) of the tail there (the tail's offset)
+  // w: D at max_theta_h times (alpha² cos² + sin²)² there (the tail's scale)
   vec4 uTable;
   // x: fresnel knot count, y: (count − 1) / (pi / 2)
   vec4 uFresnel;
@@ -46,13 +46,14 @@ float distribution(float cosH, float sin2H) {
   float sinH = sqrt(sin2H);
   float thetaH = sin2H < 0.01 ? sinH * (1.0 + sin2H * (1.0 / 6.0 + sin2H * (3.0 / 40.0)))
                               : atan(sinH, cosH);
-  // Beyond max_theta_h: the GGX tail, continuous with the table's last knot.
-  float tail = uTable.w - 2.0 * log(uRoughness.x * cosH * cosH + sin2H);
   float x = sqrt(thetaH * uTable.x) * uTable.y;
   int k = min(int(x), int(uTable.y) - 1);
   float logD = mix(tableKnot(k), tableKnot(k + 1), x - float(k));
+  // Beyond max_theta_h: the GGX tail, continuous with the table's last knot, as a ratio of GGX
+  // denominators (no log: both sides of a select are computed on a SIMD rasterizer).
+  float denom = uRoughness.x * cosH * cosH + sin2H;
   // A hand-written table may exceed float's range; exp(88) is finite.
-  return exp(min(thetaH >= uTable.z ? tail : logD, 88.0));
+  return thetaH >= uTable.z ? uTable.w / (denom * denom) : exp(min(logD, 88.0));
 #endif
 }
 
