@@ -19,11 +19,18 @@ std::shared_ptr<const Brdf> LoadBrdfFile(const std::filesystem::path& path) {
     if (doc.is_object() && doc.contains("format") && doc["format"] == "nbrdf-mlp") {
       return std::make_shared<NeuralBrdf>(NeuralBrdf::Parse(text, path.string()));
     }
-    return std::make_shared<SliceModel>(ParseMaterial(text, path.string()).Model());
+    return ParseMaterial(text, path.string()).Model();
   }
   if (ext == ".binary") return std::make_shared<MerlTable>(MerlTable::Read(path));
   throw FileError(path.string(), "unknown material file type '" + ext +
                                      "' (expected material .json, nbrdf .json or MERL .binary)");
+}
+
+void ExportMerlFile(const std::filesystem::path& material, const std::filesystem::path& output) {
+  if (output.extension() != ".binary") {
+    throw FileError(output.string(), "a MERL table's file name must end in .binary");
+  }
+  MerlTable::Tabulate(*LoadBrdfFile(material)).Write(output);
 }
 
 }  // namespace brdfrig::brdf

@@ -11,8 +11,9 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kFormat = "brdfrig-slices";
-constexpr int kVersion = 1;
+constexpr const char* kFormat = "brdfrig-material";
+constexpr int kVersion = 2;
+constexpr const char* kLegacyFormat = "brdfrig-slices";  // version 1: slices only
 constexpr const char* kChannelNames[3] = {"red", "green", "blue"};
 constexpr const char* kParamNames[4] = {"A1", "A2", "h", "x0"};
 
@@ -113,7 +114,128 @@ json SerializeDiagnostics(const SliceDiagnostics& d) {
   return out;
 }
 
+Rgb ParseRgb(const Reader& r, const json& object, const std::string& path, const char* key) {
+  const json& value = r.Field(object, path, key);
+  const std::string field = Reader::Join(path, key);
+  if (!value.is_array() || value.size() != 3) r.Fail(field, "expected [red, green, blue]");
+  Rgb out;
+  for (int c = 0; c < 3; ++c) {
+    if (!value[c].is_number() || !std::isfinite(value[c].get<double>())) {
+      r.Fail(field, "expected finite numbers, got " + value.dump());
+    }
+    out[c] = value[c].get<double>();
+  }
+  return out;
+}
+
+std::vector<double> ParseList(const Reader& r, const json& object, const std::string& path,
+                              const char* key) {
+  std::vector<double> out;
+  if (!object.contains(key)) return out;
+  const json& list = object.at(key);
+  const std::string field = Reader::Join(path, key);
+  if (!list.is_array() || list.size() > 256)
+    r.Fail(field, "expected a list of at most 256 numbers");
+  for (const json& x : list) {
+    if (!x.is_number() || !std::isfinite(x.get<double>())) {
+      r.Fail(field, "expected finite numbers, got " + x.dump());
+    }
+    out.push_back(x.get<double>());
+  }
+  return out;
+}
+
+MicrofacetModelParams ParseMicrofacet(const Reader& r, const json& doc, ModelKind kind) {
+  const std::string path = "microfacet";
+  const json& m = r.Field(doc, "", "microfacet");
+  MicrofacetModelParams p;
+  p.distribution = kind == ModelKind::kGgx        ? Distribution::kGgx
+                   : kind == ModelKind::kBeckmann ? Distribution::kBeckmann
+                                                  : Distribution::kTable;
+  p.diffuse = ParseRgb(r, m, path, "diffuse");
+  p.f0 = ParseRgb(r, m, path, "f0");
+  p.alpha = r.Number(m, path, "alpha");
+  p.fresnel_knots = ParseList(r, m, path, "fresnel_knots");
+  if (p.distribution == Distribution::kTable) {
+    p.log_d = ParseList(r, m, path, "log_d");
+    p.max_theta_h = r.Number(m, path, "max_theta_h");
+    p.shadowing_alpha = r.Number(m, path, "shadowing_alpha");
+  }
+  try {
+    p.Validate();
+  } catch (const Error& e) {
+    r.Fail(path, e.what());
+  }
+  return p;
+}
+
+json SerializeMicrofacet(const MicrofacetModelParams& p) {
+  auto rgb = [](const Rgb& c) { return json::array({c[0], c[1], c[2]}); };
+  json m = {{"diffuse", rgb(p.diffuse)},
+            {"f0", rgb(p.f0)},
+            {"alpha", p.alpha},
+            {"fresnel_knots", p.fresnel_knots}};
+  if (p.distribution == Distribution::kTable) {
+    m["log_d"] = p.log_d;
+    m["max_theta_h"] = p.max_theta_h;
+    m["shadowing_alpha"] = p.shadowing_alpha;
+  }
+  return m;
+}
+
+Distribution DistributionOf(ModelKind kind) {
+  return kind == ModelKind::kGgx        ? Distribution::kGgx
+         : kind == ModelKind::kBeckmann ? Distribution::kBeckmann
+                                        : Distribution::kTable;
+}
+
 }  // namespace
+
+const char* ModelKindName(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::kSeed:
+      return "seed";
+    case ModelKind::kSeedConstrained:
+      return "seed_constrained";
+    case ModelKind::kMicrofacet:
+      return "microfacet";
+    case ModelKind::kGgx:
+      return "ggx";
+    case ModelKind::kBeckmann:
+      return "beckmann";
+  }
+  return "?";
+}
+
+ModelKind ParseModelKind(const std::string& name) {
+  std::string known;
+  for (ModelKind kind : kAllModelKinds) {
+    if (name == ModelKindName(kind)) return kind;
+    known += std::string(known.empty() ? "" : ", ") + ModelKindName(kind);
+  }
+  throw Error("unknown model kind '" + name + "' (known: " + known + ")");
+}
+
+bool IsSliceKind(ModelKind kind) {
+  return kind == ModelKind::kSeed || kind == ModelKind::kSeedConstrained;
+}
+
+std::shared_ptr<const Brdf> Material::Model() const {
+  if (IsSliceKind(kind)) return std::make_shared<SliceModel>(slices);
+  if (microfacet.distribution != DistributionOf(kind)) {
+    throw Error(std::string("material of kind '") + ModelKindName(kind) +
+                "' holds a distribution of kind '" + DistributionName(microfacet.distribution) +
+                "'");
+  }
+  return std::make_shared<MicrofacetModel>(microfacet);
+}
+
+SliceModel Material::Slices() const {
+  if (!IsSliceKind(kind)) {
+    throw Error(std::string("material of kind '") + ModelKindName(kind) + "' has no slices");
+  }
+  return SliceModel(slices);
+}
 
 Material ParseMaterial(const std::string& json_text, const std::string& source_name) {
   const Reader r(source_name);
@@ -124,17 +246,37 @@ Material ParseMaterial(const std::string& json_text, const std::string& source_n
     r.Fail("", std::string("not valid JSON (") + e.what() + ")");
   }
   const json& format = r.Field(doc, "", "format");
-  if (format != kFormat)
-    r.Fail("format", std::string("expected \"") + kFormat + "\", got " + format.dump());
   const json& version = r.Field(doc, "", "version");
-  if (version != kVersion) {
-    r.Fail("version",
-           "this brdfrig reads version " + std::to_string(kVersion) + ", got " + version.dump());
+  Material material;
+  if (format == kLegacyFormat) {
+    if (version != 1)
+      r.Fail("version", "brdfrig-slices files are version 1, got " + version.dump());
+  } else if (format == kFormat) {
+    if (version != kVersion) {
+      r.Fail("version",
+             "this brdfrig reads version " + std::to_string(kVersion) + ", got " + version.dump());
+    }
+    const json& kind = r.Field(doc, "", "kind");
+    if (!kind.is_string()) r.Fail("kind", "expected a string, got " + kind.dump());
+    try {
+      material.kind = ParseModelKind(kind.get<std::string>());
+    } catch (const Error& e) {
+      r.Fail("kind", e.what());
+    }
+  } else {
+    r.Fail("format", std::string("expected \"") + kFormat + "\" (or the older \"" + kLegacyFormat +
+                         "\"), got " + format.dump());
+  }
+  if (doc.contains("fit")) material.fit = doc.at("fit");
+  if (doc.contains("ladder")) material.ladder = doc.at("ladder");
+  if (doc.contains("provenance")) material.provenance = doc.at("provenance");
+  if (!IsSliceKind(material.kind)) {
+    material.microfacet = ParseMicrofacet(r, doc, material.kind);
+    return material;
   }
   const json& slices = r.Field(doc, "", "slices");
   if (!slices.is_array() || slices.empty()) r.Fail("slices", "expected a non-empty array");
 
-  Material material;
   for (std::size_t i = 0; i < slices.size(); ++i) {
     const std::string path = "slices[" + std::to_string(i) + "]";
     Slice slice;
@@ -149,7 +291,6 @@ Material ParseMaterial(const std::string& json_text, const std::string& source_n
   if (!material.diagnostics.empty() && material.diagnostics.size() != material.slices.size()) {
     r.Fail("slices", "diagnostics must be given for every slice or for none");
   }
-  if (doc.contains("provenance")) material.provenance = doc.at("provenance");
   // The model's own validation names the slice and field (A1 >= A2 >= 0, h > 0, knot order).
   try {
     SliceModel check(material.slices);
@@ -166,30 +307,35 @@ Material ReadMaterialFile(const std::filesystem::path& path) {
 }
 
 std::string SerializeMaterial(const Material& material) {
-  SliceModel check(material.slices);  // never write a model we could not read back
-  if (!material.diagnostics.empty() && material.diagnostics.size() != material.slices.size()) {
-    throw Error("material: diagnostics must be given for every slice or for none");
-  }
-  json slices = json::array();
-  for (std::size_t i = 0; i < material.slices.size(); ++i) {
-    const Slice& s = material.slices[i];
-    json slice = {{"theta_in", s.theta_in}};
-    for (int c = 0; c < 3; ++c) {
-      const LobeParams& p = s.channel[c];
-      slice[kChannelNames[c]] = {{kParamNames[0], p.a1},
-                                 {kParamNames[1], p.a2},
-                                 {kParamNames[2], p.h},
-                                 {kParamNames[3], p.x0}};
+  (void)material.Model();  // never write a model we could not read back
+  json doc = {{"format", kFormat}, {"version", kVersion}, {"kind", ModelKindName(material.kind)}};
+  if (IsSliceKind(material.kind)) {
+    if (!material.diagnostics.empty() && material.diagnostics.size() != material.slices.size()) {
+      throw Error("material: diagnostics must be given for every slice or for none");
     }
-    if (!material.diagnostics.empty()) {
-      slice["diagnostics"] = SerializeDiagnostics(material.diagnostics[i]);
+    json slices = json::array();
+    for (std::size_t i = 0; i < material.slices.size(); ++i) {
+      const Slice& s = material.slices[i];
+      json slice = {{"theta_in", s.theta_in}};
+      for (int c = 0; c < 3; ++c) {
+        const LobeParams& p = s.channel[c];
+        slice[kChannelNames[c]] = {{kParamNames[0], p.a1},
+                                   {kParamNames[1], p.a2},
+                                   {kParamNames[2], p.h},
+                                   {kParamNames[3], p.x0}};
+      }
+      if (!material.diagnostics.empty()) {
+        slice["diagnostics"] = SerializeDiagnostics(material.diagnostics[i]);
+      }
+      slices.push_back(slice);
     }
-    slices.push_back(slice);
+    doc["slices"] = slices;
+  } else {
+    doc["microfacet"] = SerializeMicrofacet(material.microfacet);
   }
-  const json doc = {{"format", kFormat},
-                    {"version", kVersion},
-                    {"slices", slices},
-                    {"provenance", material.provenance}};
+  doc["fit"] = material.fit;
+  doc["ladder"] = material.ladder;
+  doc["provenance"] = material.provenance;
   return doc.dump(2) + "\n";
 }
 

@@ -1,17 +1,23 @@
-// material.json: the fitted slice model plus how it was obtained.
-//   {"format": "brdfrig-slices", "version": 1,
+// material.json: a fitted model of one kind of the model ladder plus how it was obtained.
+//   {"format": "brdfrig-material", "version": 2,
+//    "kind": "seed" | "seed_constrained" | "microfacet" | "ggx" | "beckmann",
 //    "slices": [{"theta_in": .., "red": {"A1":..,"A2":..,"h":..,"x0":..}, "green": .., "blue": ..,
-//                "diagnostics": {...}}, ...],
-//    "provenance": {...}}
-// Reading validates everything and names the offending field, e.g.
+//                "diagnostics": {...}}, ...],                      (seed kinds)
+//    "microfacet": {"diffuse": [r,g,b], "f0": [r,g,b], "alpha": .., "fresnel_knots": [..],
+//                   "log_d": [..], "max_theta_h": .., "shadowing_alpha": ..},  (other kinds)
+//    "fit": {...}, "ladder": [...], "provenance": {...}}
+// Version 1 files ({"format": "brdfrig-slices", "version": 1, "slices": ..}) still load, as
+// kind "seed". Reading validates everything and names the offending field, e.g.
 //   "material.json: slices[2].green.h: must be > 0, got -0.01".
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "brdf/microfacet_model.h"
 #include "brdf/slice_model.h"
 
 namespace brdfrig::brdf {
@@ -26,12 +32,31 @@ struct SliceDiagnostics {
   std::vector<std::string> warnings;  // e.g. "A2 unobserved: shared across slices"
 };
 
+// The rungs of the model ladder (docs/design.md): the seed's slices, the same slices with one
+// shared diffuse level and energy conservation, the data-driven microfacet model, and the
+// analytic baselines.
+enum class ModelKind { kSeed, kSeedConstrained, kMicrofacet, kGgx, kBeckmann };
+inline constexpr ModelKind kAllModelKinds[] = {ModelKind::kSeed, ModelKind::kSeedConstrained,
+                                               ModelKind::kMicrofacet, ModelKind::kGgx,
+                                               ModelKind::kBeckmann};
+const char* ModelKindName(ModelKind kind);
+// Throws brdfrig::Error listing the kinds for an unknown name.
+ModelKind ParseModelKind(const std::string& name);
+bool IsSliceKind(ModelKind kind);
+
 struct Material {
-  std::vector<Slice> slices;                  // sorted by theta_in
-  std::vector<SliceDiagnostics> diagnostics;  // empty, or one per slice
+  ModelKind kind = ModelKind::kSeed;
+  std::vector<Slice> slices;                        // slice kinds: sorted by theta_in
+  std::vector<SliceDiagnostics> diagnostics;        // slice kinds: empty, or one per slice
+  MicrofacetModelParams microfacet;                 // the other kinds (distribution matches kind)
+  nlohmann::json fit = nlohmann::json::object();    // the fit's diagnostics (non-slice kinds)
+  nlohmann::json ladder = nlohmann::json::array();  // every rung's validation scores
   nlohmann::json provenance = nlohmann::json::object();
 
-  SliceModel Model() const { return SliceModel(slices); }
+  // The model as a BRDF, whatever its kind (validates).
+  std::shared_ptr<const Brdf> Model() const;
+  // Slice kinds only (throws brdfrig::Error otherwise).
+  SliceModel Slices() const;
 };
 
 Material ParseMaterial(const std::string& json_text, const std::string& source_name);

@@ -109,7 +109,8 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   result.material.provenance["input_sha256"] = reconstruct::CaptureFingerprint(capture);
   brdf::WriteMaterialFile(out / "material.json", result.material);
   const double reconstruct_s = SecondsSince(start);
-  const brdf::SliceModel fitted = result.material.Model();
+  const std::shared_ptr<const brdf::Brdf> fitted_model = result.material.Model();
+  const brdf::Brdf& fitted = *fitted_model;
 
   // 3. Held-out views: render the fit, photograph the truth.
   say("[3/4] rendering " + std::to_string(options.view_phis_deg.size()) + " held-out views");

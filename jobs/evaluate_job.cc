@@ -29,7 +29,8 @@ EvaluateSummary RunEvaluate(const EvaluateOptions& options) {
     if (options.progress) options.progress(m);
   };
   const brdf::Material material = brdf::ReadMaterialFile(options.material);
-  const brdf::SliceModel fitted = material.Model();
+  const std::shared_ptr<const brdf::Brdf> fitted_model = material.Model();
+  const brdf::Brdf& fitted = *fitted_model;
   const sim::Scene scene = sim::LoadScene(options.scene);
   std::filesystem::create_directories(options.output_dir);
 

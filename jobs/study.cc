@@ -117,7 +117,8 @@ StudyResult RunStudyPoint(const StudySettings& s) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.slices = static_cast<int>(fit.material.slices.size());
   result.warnings = fit.warnings;
-  const brdf::SliceModel model = fit.material.Model();
+  const std::shared_ptr<const brdf::Brdf> fitted_model = fit.material.Model();
+  const brdf::Brdf& model = *fitted_model;
   result.brdf_error = brdf::LogCosineError(*scene->sample.brdf, model);
 
   std::vector<double> phis;

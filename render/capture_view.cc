@@ -3,26 +3,10 @@
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
 
-#include "brdf/analytic.h"
-#include "brdf/merl.h"
-#include "brdf/slice_model.h"
-
 namespace brdfrig::render {
 
 std::unique_ptr<GpuMaterial> MakeGpuMaterial(const brdf::Brdf& brdf) {
-  if (const auto* slices = dynamic_cast<const brdf::SliceModel*>(&brdf)) {
-    return GpuMaterial::SliceModel(*slices);
-  }
-  if (const auto* lambert = dynamic_cast<const brdf::Lambert*>(&brdf)) {
-    return GpuMaterial::Lambert(lambert->albedo());
-  }
-  if (const auto* ggx = dynamic_cast<const brdf::Ggx*>(&brdf)) {
-    return GpuMaterial::Ggx(ggx->params());
-  }
-  if (const auto* table = dynamic_cast<const brdf::MerlTable*>(&brdf)) {
-    return GpuMaterial::Merl(*table);
-  }
-  return GpuMaterial::Merl(brdf::MerlTable::Tabulate(brdf));
+  return GpuMaterial::ForBrdf(brdf);
 }
 
 cv::Mat RenderCaptureView(const CaptureView& capture, const brdf::Brdf& sample) {

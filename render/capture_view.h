@@ -13,8 +13,8 @@
 
 namespace brdfrig::render {
 
-// Any brdf::Brdf on the GPU: the slice model, Lambert and GGX have their own shaders; every
-// other model is tabulated into a MERL table and drawn with the table shader.
+// Any brdf::Brdf on the GPU: GpuMaterial::ForBrdf (the slice model, the microfacet rungs,
+// Lambert and GGX have their own shaders; any other model goes through a MERL table).
 std::unique_ptr<GpuMaterial> MakeGpuMaterial(const brdf::Brdf& brdf);
 
 struct CaptureView {

@@ -14,7 +14,68 @@ namespace {
 
 std::vector<std::string> Defines(const std::string& material) {
   return {"MAX_SLICES " + std::to_string(kMaxSlices), "MAX_LIGHTS " + std::to_string(kMaxLights),
-          material};
+          "MAX_TABLE_KNOTS " + std::to_string(kMaxTableKnots),
+          "MAX_FRESNEL_KNOTS " + std::to_string(kMaxFresnelKnots), material};
+}
+
+const char* MicrofacetDefine(brdf::Distribution d) {
+  switch (d) {
+    case brdf::Distribution::kGgx:
+      return "MICROFACET_GGX";
+    case brdf::Distribution::kBeckmann:
+      return "MICROFACET_BECKMANN";
+    case brdf::Distribution::kTable:
+      return "MICROFACET_TABLE";
+  }
+  return "";
+}
+
+// std140 contents of MicrofacetBlock (shaders/microfacet_model.glsl). Everything the shader
+// would otherwise recompute per pixel is derived here, in double.
+std::vector<float> MicrofacetBlock(const brdf::MicrofacetModel& model) {
+  const brdf::MicrofacetModelParams& p = model.params();
+  const std::vector<double>& log_d = model.normalized_log_d();
+  if (log_d.size() > static_cast<std::size_t>(kMaxTableKnots) ||
+      p.fresnel_knots.size() > static_cast<std::size_t>(kMaxFresnelKnots)) {
+    throw Error("the renderer supports at most " + std::to_string(kMaxTableKnots) +
+                " table knots and " + std::to_string(kMaxFresnelKnots) +
+                " Fresnel knots, model has " + std::to_string(log_d.size()) + " and " +
+                std::to_string(p.fresnel_knots.size()));
+  }
+  std::vector<float> block(kMaxTableKnots + kMaxFresnelKnots + 5 * 4, 0.0f);
+  for (std::size_t k = 0; k < log_d.size(); ++k) block[k] = static_cast<float>(log_d[k]);
+  float* fresnel = &block[kMaxTableKnots];
+  for (std::size_t k = 0; k < p.fresnel_knots.size(); ++k) {
+    fresnel[k] = static_cast<float>(p.fresnel_knots[k]);
+  }
+  float* tail = fresnel + kMaxFresnelKnots;
+  float* diffuse = tail;
+  float* f0 = tail + 4;
+  float* roughness = tail + 8;
+  float* table = tail + 12;
+  float* fresnel_scale = tail + 16;
+  for (int c = 0; c < 3; ++c) {
+    diffuse[c] = static_cast<float>(p.diffuse[c] / M_PI);
+    f0[c] = static_cast<float>(p.f0[c]);
+  }
+  const bool is_table = p.distribution == brdf::Distribution::kTable;
+  const double a2 = p.alpha * p.alpha;
+  roughness[0] = static_cast<float>(a2);
+  roughness[1] = static_cast<float>(is_table ? p.shadowing_alpha * p.shadowing_alpha : a2);
+  roughness[2] = static_cast<float>(p.alpha);
+  if (is_table) {
+    const double knots = static_cast<double>(log_d.size());
+    const double c = std::cos(p.max_theta_h), s = std::sin(p.max_theta_h);
+    table[0] = static_cast<float>(1 / p.max_theta_h);
+    table[1] = static_cast<float>(knots - 1);
+    table[2] = static_cast<float>(p.max_theta_h);
+    const double denom = a2 * c * c + s * s;
+    table[3] = static_cast<float>(std::min(std::exp(log_d.back()) * denom * denom, 1e38));
+  }
+  const double fresnel_count = static_cast<double>(p.fresnel_knots.size());
+  fresnel_scale[0] = static_cast<float>(fresnel_count);
+  fresnel_scale[1] = static_cast<float>(std::max(fresnel_count - 1, 0.0) / (M_PI / 2));
+  return block;
 }
 
 Eigen::Vector3f ToFloat(const brdf::Rgb& c) { return c.cast<float>().matrix(); }
@@ -29,9 +90,7 @@ std::unique_ptr<GpuMaterial> GpuMaterial::SliceModel(const brdf::SliceModel& mod
   }
   std::unique_ptr<GpuMaterial> m(new GpuMaterial);
   m->kind_ = Kind::kSlice;
-  m->program_ = std::make_unique<GlProgram>(
-      std::vector<std::string>{"mesh.vert"},
-      std::vector<std::string>{"slice_model.glsl", "shade.frag"}, Defines("MATERIAL_SLICE"));
+  m->Build({"slice_model.glsl"}, Defines("MATERIAL_SLICE"));
   // std140 layout of SliceBlock (shaders/slice_model.glsl).
   std::vector<float> block(4 * 4 * kMaxSlices + kMaxSlices + 4, 0.0f);
   for (std::size_t k = 0; k < slices.size(); ++k) {
@@ -55,9 +114,7 @@ std::unique_ptr<GpuMaterial> GpuMaterial::Lambert(const brdf::Rgb& albedo) {
   std::unique_ptr<GpuMaterial> m(new GpuMaterial);
   m->kind_ = Kind::kLambert;
   m->albedo_ = albedo;
-  m->program_ = std::make_unique<GlProgram>(
-      std::vector<std::string>{"mesh.vert"},
-      std::vector<std::string>{"reference_brdfs.glsl", "shade.frag"}, Defines("MATERIAL_LAMBERT"));
+  m->Build({"reference_brdfs.glsl"}, Defines("MATERIAL_LAMBERT"));
   return m;
 }
 
@@ -65,18 +122,14 @@ std::unique_ptr<GpuMaterial> GpuMaterial::Ggx(const brdf::MicrofacetParams& para
   std::unique_ptr<GpuMaterial> m(new GpuMaterial);
   m->kind_ = Kind::kGgx;
   m->ggx_ = params;
-  m->program_ = std::make_unique<GlProgram>(
-      std::vector<std::string>{"mesh.vert"},
-      std::vector<std::string>{"reference_brdfs.glsl", "shade.frag"}, Defines("MATERIAL_GGX"));
+  m->Build({"reference_brdfs.glsl"}, Defines("MATERIAL_GGX"));
   return m;
 }
 
 std::unique_ptr<GpuMaterial> GpuMaterial::Merl(const brdf::MerlTable& table) {
   std::unique_ptr<GpuMaterial> m(new GpuMaterial);
   m->kind_ = Kind::kMerl;
-  m->program_ = std::make_unique<GlProgram>(
-      std::vector<std::string>{"mesh.vert"},
-      std::vector<std::string>{"reference_brdfs.glsl", "shade.frag"}, Defines("MATERIAL_MERL"));
+  m->Build({"reference_brdfs.glsl"}, Defines("MATERIAL_MERL"));
   // Interleave the channel blocks and apply MERL's per-channel scales (docs/design.md, formats).
   constexpr double kScale[3] = {1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0};
   std::vector<float> rgb(3 * static_cast<std::size_t>(brdf::kMerlBins));
@@ -92,6 +145,50 @@ std::unique_ptr<GpuMaterial> GpuMaterial::Merl(const brdf::MerlTable& table) {
   glTextureSubImage3D(m->texture_, 0, 0, 0, 0, brdf::kMerlPhiD, brdf::kMerlThetaD,
                       brdf::kMerlThetaH, GL_RGB, GL_FLOAT, rgb.data());
   return m;
+}
+
+std::unique_ptr<GpuMaterial> GpuMaterial::Microfacet(const brdf::MicrofacetModel& model) {
+  const std::vector<float> block = MicrofacetBlock(model);
+  std::unique_ptr<GpuMaterial> m(new GpuMaterial);
+  m->kind_ = Kind::kMicrofacet;
+  m->Build({"microfacet_model.glsl"}, Defines(MicrofacetDefine(model.params().distribution)));
+  glCreateBuffers(1, &m->buffer_);
+  glNamedBufferData(m->buffer_, static_cast<GLsizeiptr>(block.size() * sizeof(float)), block.data(),
+                    GL_STATIC_DRAW);
+  return m;
+}
+
+std::unique_ptr<GpuMaterial> GpuMaterial::ForBrdf(const brdf::Brdf& brdf) {
+  if (const auto* slices = dynamic_cast<const brdf::SliceModel*>(&brdf)) {
+    return SliceModel(*slices);
+  }
+  if (const auto* microfacet = dynamic_cast<const brdf::MicrofacetModel*>(&brdf)) {
+    return Microfacet(*microfacet);
+  }
+  if (const auto* lambert = dynamic_cast<const brdf::Lambert*>(&brdf)) {
+    return Lambert(lambert->albedo());
+  }
+  if (const auto* ggx = dynamic_cast<const brdf::Ggx*>(&brdf)) return Ggx(ggx->params());
+  if (const auto* table = dynamic_cast<const brdf::MerlTable*>(&brdf)) return Merl(*table);
+  return Merl(brdf::MerlTable::Tabulate(brdf));
+}
+
+std::unique_ptr<GpuMaterial> GpuMaterial::ForMaterial(const brdf::Material& material) {
+  if (brdf::IsSliceKind(material.kind)) return SliceModel(material.Slices());
+  return ForBrdf(*material.Model());
+}
+
+void GpuMaterial::Build(std::vector<std::string> files, std::vector<std::string> defines) {
+  files_ = std::move(files);
+  defines_ = std::move(defines);
+  program_ = MakeProgram("mesh.vert", "shade.frag");
+}
+
+std::unique_ptr<GlProgram> GpuMaterial::MakeProgram(const std::string& vertex_file,
+                                                    const std::string& main_file) const {
+  std::vector<std::string> fragment = files_;
+  fragment.push_back(main_file);
+  return std::make_unique<GlProgram>(std::vector<std::string>{vertex_file}, fragment, defines_);
 }
 
 GpuMaterial::~GpuMaterial() {
@@ -113,23 +210,24 @@ void GpuMaterial::SetLinearInterpolation(bool linear) {
   if (kind_ == Kind::kSlice) UploadSliceBlock();
 }
 
-void GpuMaterial::Bind() const {
-  program_->Use();
+void GpuMaterial::Bind(const GlProgram& program) const {
+  program.Use();
   if (texture_) glBindTextureUnit(0, texture_);
   switch (kind_) {
     case Kind::kSlice:
+    case Kind::kMicrofacet:
       glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffer_);
       break;
     case Kind::kLambert:
-      program_->Set("uAlbedo", ToFloat(albedo_));
+      program.Set("uAlbedo", ToFloat(albedo_));
       break;
     case Kind::kGgx:
-      program_->Set("uDiffuse", ToFloat(ggx_.diffuse));
-      program_->Set("uF0", ToFloat(ggx_.f0));
-      program_->Set("uAlpha", static_cast<float>(ggx_.alpha));
+      program.Set("uDiffuse", ToFloat(ggx_.diffuse));
+      program.Set("uF0", ToFloat(ggx_.f0));
+      program.Set("uAlpha", static_cast<float>(ggx_.alpha));
       break;
     case Kind::kMerl:
-      program_->Set("uMerl", 0);
+      program.Set("uMerl", 0);
       break;
   }
 }

@@ -1,12 +1,17 @@
 // A material on the GPU: its shading program and parameters. The slice model's slices go to a
-// small uniform buffer (4 parameters × slices, rgb = channels, plus the knots).
+// small uniform buffer (4 parameters × slices, rgb = channels, plus the knots); so do the
+// microfacet rungs' parameters (their ln D table, Fresnel knots, colours and roughness).
 #pragma once
 
 #include <memory>
 #include <opencv2/core.hpp>
+#include <string>
+#include <vector>
 
 #include "brdf/analytic.h"
+#include "brdf/material_file.h"
 #include "brdf/merl.h"
+#include "brdf/microfacet_model.h"
 #include "brdf/slice_model.h"
 #include "render/gl_program.h"
 
@@ -14,6 +19,10 @@ namespace brdfrig::render {
 
 inline constexpr int kMaxSlices = 64;
 inline constexpr int kMaxLights = 8;
+// The microfacet table's knots (as many as brdf::MicrofacetModelParams::Validate allows) and
+// Fresnel correction knots; both multiples of 4 (packed four per vec4).
+inline constexpr int kMaxTableKnots = 256;
+inline constexpr int kMaxFresnelKnots = 64;
 
 class GpuMaterial {
  public:
@@ -21,28 +30,44 @@ class GpuMaterial {
   static std::unique_ptr<GpuMaterial> Lambert(const brdf::Rgb& albedo);
   static std::unique_ptr<GpuMaterial> Ggx(const brdf::MicrofacetParams& params);
   static std::unique_ptr<GpuMaterial> Merl(const brdf::MerlTable& table);
+  // The ggx, beckmann and microfacet (table) rungs, each with its own shader.
+  static std::unique_ptr<GpuMaterial> Microfacet(const brdf::MicrofacetModel& model);
+  // Any BRDF: the kinds above get their own shader; any other model is tabulated into a MERL
+  // table (35 MB on the GPU) and drawn with the table shader.
+  static std::unique_ptr<GpuMaterial> ForBrdf(const brdf::Brdf& brdf);
+  // Every kind of the model ladder (material.json).
+  static std::unique_ptr<GpuMaterial> ForMaterial(const brdf::Material& material);
   ~GpuMaterial();
 
   const GlProgram& program() const { return *program_; }
   // Binds the program, its textures and material uniforms.
-  void Bind() const;
+  void Bind() const { Bind(*program_); }
+  // The material's GLSL (which defines evalMaterial(l, v, n)) linked with another vertex shader
+  // and fragment main, e.g. a probe evaluating the BRDF at given directions; Bind(program)
+  // then sets the material's parameters on it.
+  std::unique_ptr<GlProgram> MakeProgram(const std::string& vertex_file,
+                                         const std::string& main_file) const;
+  void Bind(const GlProgram& program) const;
   // Slice model only: spline (default) or linear interpolation across theta_in.
   void SetLinearInterpolation(bool linear);
 
  private:
   friend cv::Mat EvalSliceModelOnGpu(const brdf::SliceModel&, const cv::Mat&, bool);
   GpuMaterial() = default;
+  // Compiles the shading program from the material's GLSL files and defines.
+  void Build(std::vector<std::string> files, std::vector<std::string> defines);
+  std::vector<std::string> files_, defines_;
   std::unique_ptr<GlProgram> program_;
   GLuint texture_ = 0;
   GLenum texture_target_ = 0;
   void UploadSliceBlock();
-  GLuint buffer_ = 0;         // slice model: the SliceBlock uniform buffer
+  GLuint buffer_ = 0;         // slice and microfacet models: their uniform buffer
   std::vector<float> block_;  // its std140 contents
   int slice_count_ = 0;
   bool linear_ = false;
   brdf::Rgb albedo_ = brdf::Rgb::Zero();
   brdf::MicrofacetParams ggx_;
-  enum class Kind { kSlice, kLambert, kGgx, kMerl } kind_ = Kind::kLambert;
+  enum class Kind { kSlice, kLambert, kGgx, kMerl, kMicrofacet } kind_ = Kind::kLambert;
 };
 
 // Evaluates the slice model's GLSL code at each (theta_in, theta) of `angles` (CV_32FC2) into a

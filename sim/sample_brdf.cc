@@ -79,7 +79,7 @@ std::shared_ptr<const brdf::Brdf> ParseSampleBrdf(const YamlNode& node,
     result = std::make_shared<brdf::Lambert>(ReadRgb(node.Required("albedo"), 0, 1));
   } else if (model == "slices") {
     result = FromFile(node, base_dir, [](const std::filesystem::path& path) {
-      return std::make_shared<brdf::SliceModel>(brdf::ReadMaterialFile(path).Model());
+      return brdf::ReadMaterialFile(path).Model();
     });
   } else if (model == "merl") {
     result = FromFile(node, base_dir, [](const std::filesystem::path& path) {

@@ -27,6 +27,20 @@ void RegisterRenderCommands(CLI::App& app) {
     std::printf("rendered %s -> %s\n", s.ToString().c_str(), render_options->output.c_str());
   });
 
+  struct ExportArgs {
+    std::string material, output;
+  };
+  auto export_args = std::make_shared<ExportArgs>();
+  CLI::App* export_command =
+      app.add_subcommand("export", "Write a material (any model kind) as a MERL .binary table");
+  export_command->add_option("material", export_args->material, "material.json or MERL .binary")
+      ->required();
+  export_command->add_option("-o,--output", export_args->output, "MERL table, .binary")->required();
+  export_command->callback([export_args] {
+    brdf::ExportMerlFile(export_args->material, export_args->output);
+    std::printf("exported %s -> %s\n", export_args->material.c_str(), export_args->output.c_str());
+  });
+
   struct ViewArgs {
     std::string material, compare;
     render::ViewerOptions viewer;

@@ -4,7 +4,7 @@
 
 namespace brdfrig::apps {
 
-// `brdfrig render` (headless) and `brdfrig view` (window).
+// `brdfrig render` (headless), `brdfrig view` (window) and `brdfrig export` (MERL table).
 void RegisterRenderCommands(CLI::App& app);
 
 }  // namespace brdfrig::apps

@@ -86,10 +86,76 @@ TEST(MaterialFileTest, TruncatedFileIsAParseErrorNotACrash) {
 
 TEST(MaterialFileTest, WrongFormatOrVersionIsRejected) {
   nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(Example()));
-  doc["version"] = 2;
-  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("version: this brdfrig reads version 1"));
+  doc["version"] = 3;
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("version: this brdfrig reads version 2"));
   doc["format"] = "merl";
-  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("format: expected \"brdfrig-slices\""));
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("format: expected \"brdfrig-material\""));
+  doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  doc["kind"] = "phong";
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("kind: unknown model kind 'phong'"));
+}
+
+TEST(MaterialFileTest, VersionOneSliceFilesStillLoadAsTheSeedKind) {
+  nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  doc["format"] = "brdfrig-slices";
+  doc["version"] = 1;
+  doc.erase("kind");
+  doc.erase("fit");
+  doc.erase("ladder");
+  const Material m = ParseMaterial(doc.dump(), "old.json");
+  EXPECT_EQ(m.kind, ModelKind::kSeed);
+  ASSERT_EQ(m.slices.size(), 3u);
+  EXPECT_EQ(m.slices[1].channel[0].a1, Example().slices[1].channel[0].a1);
+}
+
+Material MicrofacetExample() {
+  Material m;
+  m.kind = ModelKind::kMicrofacet;
+  m.microfacet.distribution = Distribution::kTable;
+  m.microfacet.diffuse = {0.1, 0.2, 0.3};
+  m.microfacet.f0 = {0.9, 0.6, 0.4};
+  m.microfacet.alpha = 0.15;
+  m.microfacet.fresnel_knots = {0, 0.1, -0.2, 0.3};
+  m.microfacet.log_d = {3, 2.5, 1, -1, -4};
+  m.microfacet.max_theta_h = 0.6;
+  m.microfacet.shadowing_alpha = 0.2;
+  m.fit = {{"residual", 0.01}};
+  m.ladder = nlohmann::json::array({{{"kind", "microfacet"}, {"score", 1.0}}});
+  return m;
+}
+
+TEST(MaterialFileTest, MicrofacetKindsRoundTripExactly) {
+  for (const Distribution d : {Distribution::kTable, Distribution::kGgx, Distribution::kBeckmann}) {
+    Material m = MicrofacetExample();
+    if (d != Distribution::kTable) {
+      m.kind = d == Distribution::kGgx ? ModelKind::kGgx : ModelKind::kBeckmann;
+      m.microfacet.distribution = d;
+      m.microfacet.log_d.clear();
+    }
+    const Material r = ParseMaterial(SerializeMaterial(m), "m.json");
+    EXPECT_EQ(r.kind, m.kind);
+    EXPECT_EQ(r.microfacet.log_d, m.microfacet.log_d);
+    EXPECT_EQ(r.microfacet.fresnel_knots, m.microfacet.fresnel_knots);
+    EXPECT_EQ(r.microfacet.f0[2], m.microfacet.f0[2]);
+    EXPECT_EQ(r.ladder, m.ladder);
+    EXPECT_EQ(SerializeMaterial(r), SerializeMaterial(m));
+    const Vec3 n = Vec3::UnitZ(), l = Vec3(0.3, 0, 1).normalized(),
+               v = Vec3(-0.2, 0.1, 1).normalized();
+    EXPECT_EQ(r.Model()->Eval(l, v, n)[1], m.Model()->Eval(l, v, n)[1]);
+    EXPECT_THROW(r.Slices(), Error);
+  }
+}
+
+TEST(MaterialFileTest, MicrofacetErrorsNameTheField) {
+  nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(MicrofacetExample()));
+  doc["microfacet"]["log_d"][3] = 5;
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("microfacet: log_d[3] = 5; must be <= log_d[2]"));
+  doc = nlohmann::json::parse(SerializeMaterial(MicrofacetExample()));
+  doc["microfacet"]["f0"][1] = 1.5;
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("f0.green = 1.5; must be in [0, 1]"));
+  doc = nlohmann::json::parse(SerializeMaterial(MicrofacetExample()));
+  doc["microfacet"].erase("max_theta_h");
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("microfacet.max_theta_h: missing"));
 }
 
 TEST(MaterialFileTest, UnsortedKnotsAreRejected) {

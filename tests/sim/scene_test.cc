@@ -186,7 +186,7 @@ TEST(SceneTest, SampleCanBeAFittedSliceModelFile) {
   const geometry::Vec3 n = geometry::Vec3::UnitZ();
   const geometry::Vec3 l = geometry::Vec3(std::sin(0.3), 0, std::cos(0.3));
   const geometry::Vec3 mirror(-l.x(), 0, l.z());
-  EXPECT_NEAR(scene.sample.brdf->Eval(l, mirror, n)[0], material.Model().Eval(l, mirror, n)[0],
+  EXPECT_NEAR(scene.sample.brdf->Eval(l, mirror, n)[0], material.Model()->Eval(l, mirror, n)[0],
               1e-12);
   std::filesystem::remove_all(dir);
 }
