@@ -405,7 +405,8 @@ void MicrofacetFitOptions::Validate() const {
 
 MicrofacetFit FitAnalyticMicrofacet(const std::vector<DirectionSample>& samples,
                                     brdf::Distribution distribution,
-                                    const MicrofacetFitOptions& options) {
+                                    const MicrofacetFitOptions& options,
+                                    const brdf::MicrofacetModelParams* start) {
   options.Validate();
   if (distribution == brdf::Distribution::kTable) {
     throw Error("FitAnalyticMicrofacet: the table rung has its own fit");
@@ -420,9 +421,16 @@ MicrofacetFit FitAnalyticMicrofacet(const std::vector<DirectionSample>& samples,
   double* best = nullptr;
   double best_cost = std::numeric_limits<double>::infinity();
   std::unique_ptr<ceres::Problem> best_problem;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < (start ? 1 : 3); ++i) {
     std::array<double, 7>& x = starts[i];
     x = StartValues(set, distribution, kStartAlphas[i]);
+    if (start) {
+      x[0] = std::log(std::clamp(start->alpha, kMinAlpha, kMaxAlpha));
+      for (int c = 0; c < 3; ++c) {
+        x[1 + c] = std::log(std::clamp(start->diffuse[c], kMinDiffuse, 1.0));
+        x[4 + c] = std::log(std::clamp(start->f0[c], kMinF0, 1.0));
+      }
+    }
     ceres::Problem::Options problem_options;
     auto problem = std::make_unique<ceres::Problem>(problem_options);
     for (const Prepared& s : set.samples) {
@@ -487,7 +495,6 @@ MicrofacetFit FitAnalyticMicrofacet(const std::vector<DirectionSample>& samples,
   Finish(set, samples, options, &fit);
   fit.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  fit.diagnostics["seconds"] = fit.seconds;
   return fit;
 }
 
@@ -534,8 +541,8 @@ MicrofacetFit FitTableMicrofacet(const std::vector<DirectionSample>& samples,
   // Priors scale with the data so that their strength does not depend on the sample count.
   const double per_knot = std::sqrt(n / knots);
   problem.AddResidualBlock(
-      Dynamic(NormalizationResidual{knots, max_theta_h, std::sqrt(n)}, {4, knots - 1}, 1),
-      nullptr, head.data(), steps.data());
+      Dynamic(NormalizationResidual{knots, max_theta_h, std::sqrt(n)}, {4, knots - 1}, 1), nullptr,
+      head.data(), steps.data());
   problem.AddResidualBlock(Dynamic(TailResidual{knots, max_theta_h, per_knot}, {4, knots - 1}, 1),
                            nullptr, head.data(), steps.data());
   if (options.smoothness > 0) {
@@ -621,7 +628,6 @@ MicrofacetFit FitTableMicrofacet(const std::vector<DirectionSample>& samples,
   Finish(set, samples, options, &fit);
   fit.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  fit.diagnostics["seconds"] = fit.seconds;
   return fit;
 }
 

@@ -54,10 +54,12 @@ struct MicrofacetFit {
   nlohmann::json diagnostics;  // what goes into Material::fit
 };
 
-// Throws brdfrig::Error with too few samples.
+// Throws brdfrig::Error with too few samples. `start`: a fit of similar data to start from
+// (one start instead of several; the ladder's validation folds use the full fit).
 MicrofacetFit FitAnalyticMicrofacet(const std::vector<DirectionSample>& samples,
                                     brdf::Distribution distribution,
-                                    const MicrofacetFitOptions& options);
+                                    const MicrofacetFitOptions& options,
+                                    const brdf::MicrofacetModelParams* start = nullptr);
 
 // `start`: a GGX fit of the same samples (its rho_d, f0 and alpha start the table).
 MicrofacetFit FitTableMicrofacet(const std::vector<DirectionSample>& samples,
