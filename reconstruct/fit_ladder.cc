@@ -55,14 +55,38 @@ struct FoldFits {
   std::vector<std::string> errors;
 };
 
+// The slice rungs fit one slice per position: the fold's model is the full model without the
+// held-out position's slice. Exact but for what the slices share (pooled incidence angles, the
+// A2 taken from other slices, seed_constrained's floor and energy scale), which is kept from
+// the full fit; it saves refitting every slice in every fold.
+brdf::Material DropPosition(const RungResult& full, int held_out) {
+  brdf::Material m = full.material;
+  m.slices.clear();
+  m.diagnostics.clear();
+  for (std::size_t i = 0; i < full.material.slices.size(); ++i) {
+    const nlohmann::json& from = full.slices_from_positions.at(i).at("positions");
+    if (from.size() == 1 && from[0].get<int>() == held_out) continue;
+    m.slices.push_back(full.material.slices[i]);
+  }
+  if (m.slices.empty()) throw Error("no slice left without the held-out position");
+  return m;
+}
+
 FoldFits FitAll(const std::vector<brdf::ModelKind>& kinds,
                 const std::vector<const PositionSamples*>& positions, const LadderOptions& options,
-                const std::vector<const brdf::MicrofacetModelParams*>& starts) {
+                const std::vector<const brdf::MicrofacetModelParams*>& starts,
+                const std::vector<RungResult>& full, int held_out) {
   FoldFits out;
   const brdf::MicrofacetModelParams* fold_ggx = nullptr;
   for (std::size_t r = 0; r < kinds.size(); ++r) {
     try {
       const brdf::ModelKind kind = kinds[r];
+      if (brdf::IsSliceKind(kind)) {
+        if (!full[r].fitted) throw Error(full[r].error);
+        out.materials.push_back(DropPosition(full[r], held_out));
+        out.errors.emplace_back();
+        continue;
+      }
       const brdf::MicrofacetModelParams* start =
           kind == brdf::ModelKind::kMicrofacet ? fold_ggx : starts[r];
       out.materials.push_back(FitRung(kind, positions, options, false, nullptr, start));
@@ -181,7 +205,7 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
         for (std::size_t i = 0; i < fit_positions.size(); ++i) {
           if (i != f) train.push_back(&fit_positions[i]);
         }
-        fold_fits[f] = FitAll(kinds, train, options, starts);
+        fold_fits[f] = FitAll(kinds, train, options, starts, result.rungs, fit_positions[f].index);
       }
     });
     for (std::size_t f = 0; f < fit_positions.size(); ++f) {
@@ -254,7 +278,6 @@ nlohmann::json LadderResult::Json() const {
                                : "mean held-out weighted RMS of ln(eps + f cos_i) residuals"},
         {"lopo_folds", folds},
         {"validation_scores", validation},
-        {"fit_seconds", r.fit_seconds},
         {"size_bytes", r.size_bytes},
         {"chosen", r.chosen}};
     if (!r.fitted) j["error"] = r.error;

@@ -140,6 +140,12 @@ SeedFit FitSeed(const std::vector<const PositionSamples*>& positions,
     }
   } else {
     for (SliceFit& fit : fits) {
+      // A flat slice (no lobe) comes back as its mean level: the floor is still the shared one.
+      for (int c = 0; c < 3; ++c) {
+        brdf::LobeParams& p = fit.slice.channel[c];
+        p.a2 = (*shared_a2)[c];
+        p.a1 = std::max(p.a1, p.a2);
+      }
       fit.warnings.push_back("A2 shared by every slice: measured far from the mirror direction");
     }
   }
@@ -172,6 +178,29 @@ SeedFit FitSeed(const std::vector<const PositionSamples*>& positions,
             "energy: directional albedo " + Fixed(albedo.maxCoeff(), 3) +
             " > 1 at this theta_in; the lobe (A1 − A2) scaled by " + Fixed(scale, 4));
       }
+    }
+  }
+  if (constrained) {
+    // Between and beyond the knots the albedo can still exceed 1 (the geometry changes with
+    // theta_in while a slice stays put): every lobe is scaled by a common factor until the
+    // largest albedo over 0°–85° is within bounds.
+    for (int round = 0; round < 8; ++round) {
+      const AlbedoPeak peak = MaxAlbedo(brdf::SliceModel(material.slices));
+      if (peak.albedo <= 0.999) break;
+      const double factor = 0.995 * 0.999 / peak.albedo;
+      for (brdf::Slice& slice : material.slices) {
+        for (brdf::LobeParams& p : slice.channel) {
+          p.a1 = p.a2 + factor * (p.a1 - p.a2);
+          // A floor alone above the limit (the lobe already gone) comes down too.
+          if (round >= 4) {
+            p.a2 *= factor;
+            p.a1 = std::max(p.a1 * factor, p.a2);
+          }
+        }
+      }
+      out.warnings.push_back("energy: albedo " + Fixed(peak.albedo, 3) + " at theta_in " +
+                             Fixed(peak.theta_in * kDeg, 0) + "°; every slice's lobe scaled by " +
+                             Fixed(factor, 4));
     }
   }
   return out;
