@@ -87,17 +87,40 @@ inline double TableKnotThetaH(int k, int knots, double max_theta_h) {
   return u * u * max_theta_h;
 }
 
+// Where theta_h falls in the table: ln D = (1 − t) ln D[k] + t ln D[k + 1] inside the table;
+// beyond max_theta_h (tail), ln D = ln D[knots − 1] + the tail's GGX drop from max_theta_h.
+// The fits use it to know which knots a sample depends on.
+struct TablePosition {
+  int k = 0;
+  double t = 0;
+  bool tail = false;
+};
+
+inline TablePosition LocateInTable(int knots, double max_theta_h, double theta_h) {
+  if (theta_h >= max_theta_h) return {knots - 1, 0, true};
+  const double x = std::sqrt(std::max(theta_h, 0.0) / max_theta_h) * (knots - 1);
+  const int k = std::min(static_cast<int>(x), knots - 2);
+  return {k, x - k, false};
+}
+
+// ln D at a located theta_h from the knot values it depends on (lo = D[k], hi = D[k + 1],
+// both D[knots − 1] in the tail).
+template <typename T>
+T TableLogDAt(const TablePosition& at, const T& log_d_lo, const T& log_d_hi, double max_theta_h,
+              const T& tail_alpha, double theta_h) {
+  if (at.tail) {
+    return log_d_lo + LogGgxD(std::cos(theta_h), tail_alpha) -
+           LogGgxD(std::cos(max_theta_h), tail_alpha);
+  }
+  return (1 - at.t) * log_d_lo + at.t * log_d_hi;
+}
+
 // ln D(theta_h) of the table rung (before normalization).
 template <typename T>
 T TableLogD(const T* log_d, int knots, double max_theta_h, const T& tail_alpha, double theta_h) {
-  if (theta_h >= max_theta_h) {
-    return log_d[knots - 1] + LogGgxD(std::cos(theta_h), tail_alpha) -
-           LogGgxD(std::cos(max_theta_h), tail_alpha);
-  }
-  const double x = std::sqrt(std::max(theta_h, 0.0) / max_theta_h) * (knots - 1);
-  const int k = std::min(static_cast<int>(x), knots - 2);
-  const double t = x - k;
-  return (1 - t) * log_d[k] + t * log_d[k + 1];
+  const TablePosition at = LocateInTable(knots, max_theta_h, theta_h);
+  return TableLogDAt(at, log_d[at.k], log_d[at.tail ? at.k : at.k + 1], max_theta_h, tail_alpha,
+                     theta_h);
 }
 
 // Projected-area normalization of the table's D: 2 pi ∫ D(theta_h) cos sin dtheta_h over

@@ -110,7 +110,8 @@ void FindSteps(const Profile& profile, const EdgeLineOptions& options,
     // Undistort: the ray through the pixel, projected again without distortion.
     cv::Point2d q = p;
     if (intrinsics.k1 != 0 || intrinsics.k2 != 0) {
-      const geometry::Vec3 ray = geometry::PixelRayInWorld(intrinsics, geometry::CameraPose{}, {p.x, p.y});
+      const geometry::Vec3 ray =
+          geometry::PixelRayInWorld(intrinsics, geometry::CameraPose{}, {p.x, p.y});
       q = {undistorted.fx * ray.x() / ray.z() + undistorted.cx,
            undistorted.fy * ray.y() / ray.z() + undistorted.cy};
     }
@@ -163,8 +164,8 @@ EdgeImage MakeEdgeImage(const cv::Mat& radiance) {
 }
 
 EdgeLine FindEdgeLine(const EdgeImage& image, const geometry::Intrinsics& intrinsics,
-                      const geometry::CameraPose& nominal, const geometry::Vec3& a, const geometry::Vec3& b,
-                      const EdgeLineOptions& options) {
+                      const geometry::CameraPose& nominal, const geometry::Vec3& a,
+                      const geometry::Vec3& b, const EdgeLineOptions& options) {
   EdgeLine result;
   geometry::Intrinsics undistorted = intrinsics;
   undistorted.k1 = undistorted.k2 = 0;
@@ -188,8 +189,8 @@ EdgeLine FindEdgeLine(const EdgeImage& image, const geometry::Intrinsics& intrin
     for (int j = 0; j < kProfileSamples && inside; ++j) {
       const double u = options.search_band_m * (2.0 * j / (kProfileSamples - 1) - 1);
       Eigen::Vector2d p;
-      inside = geometry::ProjectToPixel(intrinsics, nominal, on_edge + u * across, &p) && p.x() >= 1 &&
-               p.y() >= 1 && p.x() <= cols - 2 && p.y() <= rows - 2;
+      inside = geometry::ProjectToPixel(intrinsics, nominal, on_edge + u * across, &p) &&
+               p.x() >= 1 && p.y() >= 1 && p.x() <= cols - 2 && p.y() <= rows - 2;
       profile.pixel[j] = {p.x(), p.y()};
     }
     if (!inside) continue;

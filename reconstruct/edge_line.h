@@ -49,8 +49,8 @@ struct EdgeLine {
 // Searches for the image of the world segment a→b (plane z = 0). Not finding it (too few
 // collinear steps, the edge out of view) is a result, not an error.
 EdgeLine FindEdgeLine(const EdgeImage& image, const geometry::Intrinsics& intrinsics,
-                      const geometry::CameraPose& nominal, const geometry::Vec3& a, const geometry::Vec3& b,
-                      const EdgeLineOptions& options);
+                      const geometry::CameraPose& nominal, const geometry::Vec3& a,
+                      const geometry::Vec3& b, const EdgeLineOptions& options);
 
 // Where two lines (direction, point) cross; false when they are (nearly) parallel.
 bool IntersectLines(const cv::Vec4d& a, const cv::Vec4d& b, cv::Point2d* crossing);

@@ -1,7 +1,8 @@
-// The reconstruction of one capture: per position HDR merge → target and pose → light →
-// radiometry → BRDF samples, then one slice fit per position, sharing what single slices
-// cannot determine. Positions whose photos are missing or corrupt, or whose target cannot be
-// found, are skipped with the reason in the report; no usable position is an error.
+// The reconstruction of one capture, in three stages: measure each position (HDR merge →
+// target and pose → light → radiometry → samples; reconstruct/measure_position.h), then fit
+// every rung of the model ladder and choose one by validation (reconstruct/fit_ladder.h).
+// Positions whose photos are missing or corrupt, or whose target cannot be found, are skipped
+// with the reason in the report; no usable position is an error.
 #pragma once
 
 #include <filesystem>
@@ -12,13 +13,8 @@
 
 #include "brdf/material_file.h"
 #include "reconstruct/capture_set.h"
-#include "reconstruct/hdr_merge.h"
-#include "reconstruct/light_estimate.h"
-#include "reconstruct/light_refine.h"
-#include "reconstruct/radiometry.h"
-#include "reconstruct/samples.h"
-#include "reconstruct/slice_fit.h"
-#include "reconstruct/target.h"
+#include "reconstruct/fit_ladder.h"
+#include "reconstruct/measure_position.h"
 
 namespace brdfrig::reconstruct {
 
@@ -30,30 +26,25 @@ struct ReconstructOptions {
   RadiometryOptions radiometry;
   SampleOptions samples;
   SliceFitOptions fit;
+  DirectionSampleOptions directions;
+  MicrofacetFitOptions microfacet;
+  // The model kind written: empty = every rung of the ladder fitted and the best by validation
+  // chosen; a kind name ("seed", "seed_constrained", "microfacet", "ggx", "beckmann") = only
+  // that rung.
+  std::string model;
+  bool validate = true;            // leave-one-position-out folds when choosing
   std::filesystem::path hdr_dir;   // when set: pNN.exr (radiance) and pNN_valid.png written there
   std::vector<int> use_positions;  // position indices to use; empty = all
+  // Position indices measured but never fitted: every rung is scored on them (a plan's
+  // validation photos).
+  std::vector<int> validation_positions;
   void Validate() const;
-};
-
-struct PositionReport {
-  int index = 0;
-  bool used = false;
-  std::string skipped_reason;  // why the position was left out (used == false)
-  double theta_in = 0;
-  double invalid_fraction = 0;  // pixels clipped in every exposure
-  double reprojection_rms_px = 0;
-  double camera_disagreement_m = 0;  // measured vs nominal camera centre
-  double edge_line_rms_px = 0;       // scatter of the cut-out edge points about their lines
-  LightEstimate light;               // position: after refinement
-  double light_refinement_rad = 0;   // how far the joint fit moved the highlight's light
-  Radiometry radiometry;
-  int samples = 0;
-  std::vector<std::string> warnings;
 };
 
 struct ReconstructionResult {
   brdf::Material material;
   std::vector<PositionReport> positions;
+  LadderResult ladder;  // every rung fitted, with its scores; material is the chosen one
   std::vector<std::string> warnings;
   std::map<std::string, double> stage_seconds;  // wall time per stage, summed over positions
   std::string Summary() const;                  // a short human report

@@ -15,7 +15,8 @@ namespace {
 
 std::array<geometry::Vec3, 4> Rectangle(double width, double height) {
   const double w = width / 2, h = height / 2;
-  return {geometry::Vec3(-w, -h, 0), geometry::Vec3(w, -h, 0), geometry::Vec3(w, h, 0), geometry::Vec3(-w, h, 0)};
+  return {geometry::Vec3(-w, -h, 0), geometry::Vec3(w, -h, 0), geometry::Vec3(w, h, 0),
+          geometry::Vec3(-w, h, 0)};
 }
 
 std::array<geometry::Vec3, 4> WorldCorners(const geometry::TargetGeometry& target) {
@@ -89,13 +90,16 @@ cv::Matx33d CameraMatrix(const geometry::Intrinsics& k) {
 cv::Point2d UndistortPixel(const geometry::Intrinsics& k, const cv::Point2d& pixel) {
   if (k.k1 == 0 && k.k2 == 0) return pixel;
   // The ray through the pixel, projected again without distortion.
-  const geometry::Vec3 ray = geometry::PixelRayInWorld(k, geometry::CameraPose{}, {pixel.x, pixel.y});
+  const geometry::Vec3 ray =
+      geometry::PixelRayInWorld(k, geometry::CameraPose{}, {pixel.x, pixel.y});
   return {k.fx * ray.x() / ray.z() + k.cx, k.fy * ray.y() / ray.z() + k.cy};
 }
 
 TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
-                                const geometry::Intrinsics& intrinsics, const geometry::CameraPose& nominal,
-                                const geometry::TargetGeometry& target, const TargetOptions& options) {
+                                const geometry::Intrinsics& intrinsics,
+                                const geometry::CameraPose& nominal,
+                                const geometry::TargetGeometry& target,
+                                const TargetOptions& options) {
   options.Validate();
   (void)valid;  // clipped pixels keep their lower bound, which still marks an edge
   const EdgeImage image = MakeEdgeImage(radiance);
@@ -157,8 +161,8 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
 }
 
 PoseEstimate EstimatePose(const TargetCorners& corners, const geometry::Intrinsics& intrinsics,
-                          const geometry::TargetGeometry& target, const geometry::CameraPose& nominal,
-                          const TargetOptions& options) {
+                          const geometry::TargetGeometry& target,
+                          const geometry::CameraPose& nominal, const TargetOptions& options) {
   std::vector<cv::Point3d> object;
   for (const geometry::Vec3& w : WorldCorners(target)) object.emplace_back(w.x(), w.y(), w.z());
   std::vector<cv::Point2d> image(corners.corners.begin(), corners.corners.end());

@@ -17,6 +17,7 @@ struct ReconstructArgs {
   bool force = false;
   double bin_width_deg = 0.02;
   bool no_light_refine = false;
+  std::string model;
 };
 
 }  // namespace
@@ -24,7 +25,7 @@ struct ReconstructArgs {
 void RegisterReconstructCommands(CLI::App& app) {
   auto args = std::make_shared<ReconstructArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "reconstruct", "Fit a slice model (material.json) to the photos of one or many captures");
+      "reconstruct", "Fit a material model (material.json) to the photos of one or many captures");
   cmd->add_option("captures", args->inputs,
                   "Capture directories (sessions or `brdfrig simulate` output), or directories "
                   "holding captures")
@@ -37,6 +38,10 @@ void RegisterReconstructCommands(CLI::App& app) {
   cmd->add_option(
       "--bin-width-deg", args->bin_width_deg,
       "Average samples in bins of this many degrees of theta (0 = every pixel; default 0.02)");
+  cmd->add_option("--model", args->model,
+                  "Model kind to fit: seed, seed_constrained, microfacet, ggx, beckmann "
+                  "(default: every rung of the ladder, the best by leave-one-position-out "
+                  "validation)");
   cmd->add_flag("--no-light-refine", args->no_light_refine,
                 "Keep the light from the highlight's centroid (no joint refinement)");
   cmd->callback([args] {
@@ -47,6 +52,7 @@ void RegisterReconstructCommands(CLI::App& app) {
     options.force = args->force;
     options.reconstruct.samples.bin_width = Radians(args->bin_width_deg);
     options.reconstruct.light_refine.enabled = !args->no_light_refine;
+    options.reconstruct.model = args->model;
     const auto items = reconstruct::ReconstructBatch(
         options, [](const std::string& message) { std::fprintf(stderr, "%s\n", message.c_str()); });
     int failed = 0;

@@ -8,6 +8,7 @@
 
 #include "brdf/material_file.h"
 #include "reconstruct/capture_set.h"
+#include "reconstruct/pipeline.h"
 #include "sim/simulate.h"
 
 namespace brdfrig::reconstruct::testing {
@@ -23,6 +24,14 @@ inline brdf::Material FlatSliceTruth() {
   brdf::Material m;
   m.slices = {slice};
   return m;
+}
+
+// The seed rung alone (today's slice fit, no ladder): for tests of the measuring stages and of
+// the slices themselves.
+inline ReconstructOptions SeedOnly() {
+  ReconstructOptions options;
+  options.model = "seed";
+  return options;
 }
 
 struct SceneSpec {

@@ -62,14 +62,15 @@ TEST(HardCases, HighlightSaturatedInEveryExposureIsFlagged) {
   spec.effects = kRealistic;
   spec.exposures = "[0.004, 0.008, 0.016]";  // the peak clips even in the shortest
   spec.positions = "[{camera_arm: 20, light_arm: -20}, {camera_arm: 40, light_arm: -40}]";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("saturated"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("saturated"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_TRUE(AnyWarningContains(r, "clipped in every exposure"));
   for (const auto& p : r.positions) EXPECT_GT(p.invalid_fraction, 0);
   // A bracket where the whole sample clips: the position is skipped with the reason.
   spec.exposures = "[0.03, 0.05, 0.0666667]";
   try {
-    Reconstruct(SimulateCapture(TempDir("saturated_all"), spec), {});
+    Reconstruct(SimulateCapture(TempDir("saturated_all"), spec), testing::SeedOnly());
     FAIL() << "an all-clipped capture was reconstructed";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("add a shorter exposure"), std::string::npos) << e.what();
@@ -80,7 +81,8 @@ TEST(HardCases, HighlightOutsideTheCutoutFallsBackToTheNominalLight) {
   SceneSpec spec;
   spec.brdf = kGgx;
   spec.positions = "[{camera_arm: 20, light_arm: -45}, {camera_arm: 30, light_arm: -30}]";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("outside"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("outside"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_TRUE(AnyWarningContains(r, "nominal light used"));
 }
@@ -89,7 +91,8 @@ TEST(HardCases, GrazingLightIsUsedOrSkippedWithAReasonNeverACrash) {
   SceneSpec spec;
   spec.brdf = kGgx;
   spec.positions = "[{camera_arm: 30, light_arm: -30}, {camera_arm: 82, light_arm: -82}]";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("grazing"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("grazing"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   for (const auto& p : r.positions) {
     if (!p.used) {
@@ -101,7 +104,8 @@ TEST(HardCases, GrazingLightIsUsedOrSkippedWithAReasonNeverACrash) {
 TEST(HardCases, NearlyLambertianSampleGivesFlatSlicesAtTheRightLevel) {
   SceneSpec spec;
   spec.brdf = "{model: lambert, albedo: [0.4, 0.3, 0.2]}";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("lambert"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("lambert"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_TRUE(AnyWarningContains(r, "no highlight"));
   EXPECT_TRUE(AnyWarningContains(r, "no lobe"));
@@ -115,7 +119,8 @@ TEST(HardCases, NearMirrorSampleSaysTheLobeEdgeIsUnresolved) {
   SceneSpec spec;
   spec.brdf = "{model: ggx, alpha: 0.004, f0: 0.9, diffuse: 0.05}";
   spec.exposures = "[0.00025, 0.008, 0.0666667]";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("mirror"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("mirror"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_TRUE(AnyWarningContains(r, "h unresolved") || AnyWarningContains(r, "clipped"));
 }
@@ -127,7 +132,7 @@ TEST(HardCases, MissingAndCorruptPhotosSkipTheirPositionWithTheFileNamed) {
   CaptureSet capture = SimulateCapture(dir, spec);
   std::filesystem::remove(capture.positions[0].frames[1].file);
   WriteFileAtomically(capture.positions[1].frames[0].file, "not a png");
-  const ReconstructionResult r = Reconstruct(capture, {});
+  const ReconstructionResult r = Reconstruct(capture, testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_EQ(r.material.slices.size(), 1u);
   ASSERT_EQ(r.warnings.size(), 2u);
@@ -136,7 +141,7 @@ TEST(HardCases, MissingAndCorruptPhotosSkipTheirPositionWithTheFileNamed) {
       << r.warnings[0];
   // Nothing usable at all is an error that lists every reason.
   std::filesystem::remove(capture.positions[2].frames[0].file);
-  EXPECT_THROW(Reconstruct(capture, {}), Error);
+  EXPECT_THROW(Reconstruct(capture, testing::SeedOnly()), Error);
 }
 
 TEST(HardCases, NanAndInfInInputExrAreInvalidPixelsNotNumbers) {
@@ -156,7 +161,7 @@ TEST(HardCases, NanAndInfInInputExrAreInvalidPixelsNotNumbers) {
     frame.file.replace_extension(".exr");
     WriteRadianceExr(frame.file, linear);
   }
-  const ReconstructionResult r = Reconstruct(capture, {});
+  const ReconstructionResult r = Reconstruct(capture, testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_GT(r.positions[0].invalid_fraction, 0);
 }
@@ -177,7 +182,7 @@ TEST(HardCases, PartlyOccludedCornersStillGiveThePose) {
                cv::Scalar(500, 500, 500), cv::FILLED);
     cv::imwrite(frame.file.string(), photo);
   }
-  const ReconstructionResult r = Reconstruct(capture, {});
+  const ReconstructionResult r = Reconstruct(capture, testing::SeedOnly());
   ExpectFinite(r.material);
   ASSERT_TRUE(r.positions[0].used);
   EXPECT_LT(r.positions[0].camera_disagreement_m, 2e-3);
@@ -191,7 +196,8 @@ TEST(HardCases, Noisy8BitCaptureRecoversTheResponseAndFitsFinite) {
       "[{type: shot_noise, full_well: 20000}, {type: read_noise, sigma: 0.001}, "
       "{type: saturation, level: 1.0}, {type: response_curve, curve: srgb}]";
   spec.exposures = "[0.001, 0.004, 0.016, 0.0666667]";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("jpeg"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("jpeg"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_EQ(r.material.slices.size(), 3u);
 }
@@ -202,7 +208,8 @@ TEST(HardCases, VeryDarkSampleIsMeasuredAtItsLevel) {
   SceneSpec spec;
   spec.brdf = "{model: lambert, albedo: [0.02, 0.015, 0.01]}";
   spec.effects = kRealistic;
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("dark"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("dark"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   for (const brdf::Slice& s : r.material.slices) {
     EXPECT_NEAR(s.channel[0].a2, 0.02 / M_PI, 0.05 * 0.02 / M_PI);  // 5% at 1/50 of the paper
@@ -217,7 +224,8 @@ TEST(HardCases, HighlightAtTheEdgeOfTheCutoutIsMeasuredOrDeclared) {
   spec.brdf = kGgx;
   spec.effects = kRealistic;
   spec.positions = "[{camera_arm: 20, light_arm: -29}, {camera_arm: 35, light_arm: -35}]";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("edge"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("edge"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   ASSERT_TRUE(r.positions[0].used) << r.positions[0].skipped_reason;
   const LightEstimate& light = r.positions[0].light;
@@ -237,9 +245,10 @@ TEST(HardCases, ExtremeExposureRatioMergesToTheSameMaterial) {
   spec.effects = kRealistic;
   spec.positions = "[{camera_arm: 30, light_arm: -30}]";
   const ReconstructionResult reference =
-      Reconstruct(SimulateCapture(TempDir("ratio_ref"), spec), {});
+      Reconstruct(SimulateCapture(TempDir("ratio_ref"), spec), testing::SeedOnly());
   spec.exposures = "[0.0001, 0.1]";
-  const ReconstructionResult r = Reconstruct(SimulateCapture(TempDir("ratio"), spec), {});
+  const ReconstructionResult r =
+      Reconstruct(SimulateCapture(TempDir("ratio"), spec), testing::SeedOnly());
   ExpectFinite(r.material);
   ASSERT_EQ(r.material.slices.size(), 1u);
   for (int c = 0; c < 3; ++c) {
@@ -252,7 +261,8 @@ TEST(HardCases, ExtremeExposureRatioMergesToTheSameMaterial) {
   // its edges and its brightness are noise. The result is still finite, and the diagnostics
   // say the scale and the pose cannot be trusted.
   spec.exposures = "[0.00002, 0.2]";
-  const ReconstructionResult bad = Reconstruct(SimulateCapture(TempDir("ratio_bad"), spec), {});
+  const ReconstructionResult bad =
+      Reconstruct(SimulateCapture(TempDir("ratio_bad"), spec), testing::SeedOnly());
   ExpectFinite(bad.material);
   EXPECT_TRUE(AnyWarningContains(bad, "paper brightness spread"));
 }
@@ -264,7 +274,7 @@ TEST(HardCases, OneWholePositionMissingIsSkippedAndTheRestFitted) {
   for (const BracketFrame& frame : capture.positions[1].frames) {
     std::filesystem::remove(frame.file);
   }
-  const ReconstructionResult r = Reconstruct(capture, {});
+  const ReconstructionResult r = Reconstruct(capture, testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_EQ(r.material.slices.size(), 2u);
   EXPECT_FALSE(r.positions[1].used);

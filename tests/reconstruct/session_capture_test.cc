@@ -58,7 +58,7 @@ TEST(SessionCapture, IdealSessionIsRecoveredToOnePartInAThousand) {
   for (const CapturePosition& p : capture.positions) EXPECT_EQ(p.frames.size(), 3u);
   EXPECT_NEAR(capture.positions[1].axis_readings.at("camera_arm"), 35 * M_PI / 180, 1e-9);
 
-  const ReconstructionResult result = Reconstruct(capture, {});
+  const ReconstructionResult result = Reconstruct(capture, testing::SeedOnly());
   ASSERT_EQ(result.material.slices.size(), 3u);
   const brdf::Material truth = testing::FlatSliceTruth();
   const brdf::Slice& want = truth.slices[0];
@@ -85,7 +85,7 @@ TEST(SessionCapture, AbortedSessionUsesItsCompletePositionsAndSaysSo) {
   ASSERT_FALSE(capture.warnings.empty());
   EXPECT_NE(capture.warnings[0].find("aborted"), std::string::npos) << capture.warnings[0];
   for (const CapturePosition& p : capture.positions) EXPECT_EQ(p.frames.size(), 3u);
-  const ReconstructionResult result = Reconstruct(capture, {});
+  const ReconstructionResult result = Reconstruct(capture, testing::SeedOnly());
   EXPECT_EQ(result.material.slices.size(), capture.positions.size());
   EXPECT_EQ(result.warnings.front(), capture.warnings.front());
 }

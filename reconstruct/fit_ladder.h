@@ -1,0 +1,74 @@
+// Stage 3 of the reconstruction: every rung of the model ladder fitted to the measured
+// positions, each scored by how well it predicts photos it was not fitted to, and the best
+// one chosen.
+//
+// Scores use the fits' loss (reconstruct/log_loss.h, eps from the held-out data): the
+// weighted RMS of ln(eps + f_model·cos_i) − ln(eps + f_data·cos_i) over a held-out position's
+// direction samples. Leave-one-position-out (LOPO): each fit position in turn is left out, the
+// rung is fitted to the others and scored on it; the rung's score is the mean over folds.
+// Validation positions (the plan's, when the capture has them) are never fitted; every rung
+// fitted to all fit positions is scored on them, and those scores count with the folds'.
+// A fold whose fit fails scores +inf (the rung cannot be fitted from that subset).
+#pragma once
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "brdf/material_file.h"
+#include "reconstruct/microfacet_fit.h"
+#include "reconstruct/seed_fit.h"
+#include "reconstruct/slice_fit.h"
+
+namespace brdfrig::reconstruct {
+
+struct LadderOptions {
+  // Empty: fit every rung and choose by validation. A kind name ("seed", "ggx", ...): fit only
+  // that rung, no validation.
+  std::string model;
+  SliceFitOptions slice;
+  MicrofacetFitOptions microfacet;
+  bool validate = true;  // LOPO folds (false: every rung fitted once, the choice by residual)
+  void Validate() const;
+};
+
+struct RungResult {
+  brdf::ModelKind kind = brdf::ModelKind::kSeed;
+  brdf::Material material;  // fitted to every fit position (diagnostics in slices / fit)
+  bool fitted = false;
+  std::string error;  // why the rung could not be fitted (fitted == false)
+  double fit_seconds = 0;
+  double score = 0;                 // mean held-out score (lower is better); +inf when unscored
+  std::vector<int> fold_positions;  // the held-out position of each fold
+  std::vector<double> fold_scores;  // LOPO
+  std::vector<double> validation_scores;  // one per validation position
+  std::size_t size_bytes = 0;             // the model in material.json (without fit/ladder json)
+  bool chosen = false;
+  std::vector<std::string> warnings;     // the slice rungs' fit-wide warnings
+  nlohmann::json slices_from_positions;  // slice rungs
+};
+
+struct LadderResult {
+  std::vector<RungResult> rungs;
+  int chosen = -1;  // index into rungs
+  // What goes into Material::ladder. Wall times are left out (they are in Summary()): a
+  // capture reprocessed gives the same material.json bytes (reconstruct/batch.h).
+  nlohmann::json Json() const;
+  std::string Summary() const;  // one line per rung
+};
+
+// `fit_positions`: the positions the rungs are fitted to; `validation_positions`: scored only.
+// Throws brdfrig::Error when no rung can be fitted.
+LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
+                       const std::vector<PositionSamples>& validation_positions,
+                       const LadderOptions& options,
+                       const std::function<void(const std::string&)>& say = {});
+
+// One rung fitted to the given positions (`final`: with covariance and diagnostics; folds skip
+// them). Throws brdfrig::Error when it cannot be fitted.
+brdf::Material FitRung(brdf::ModelKind kind, const std::vector<const PositionSamples*>& positions,
+                       const LadderOptions& options, bool final, RungResult* details = nullptr,
+                       const brdf::MicrofacetModelParams* ggx_start = nullptr);
+
+}  // namespace brdfrig::reconstruct

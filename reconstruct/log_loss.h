@@ -1,0 +1,33 @@
+// The loss every rung is fitted and judged with (ACCURACY.md): per sample and channel
+//
+//     r = ln(eps_c + f_model · cos_i) − ln(eps_c + f_data · cos_i),   weight cos_i · cos_o · pixels
+//
+// eps_c is a fraction (1 %) of the data's 10th percentile of f·cos_i in that channel: small
+// enough that a dark channel's level is fitted in relative terms (ln(1 + f) would be an
+// absolute error there and never fit it), large enough that noise about zero does not make
+// ln explode. The weight is the cosine-weighted measure of the (l, v) pair, so a sample counts
+// as much as it contributes to rendered radiance.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "brdf/brdf.h"
+#include "reconstruct/direction_samples.h"
+
+namespace brdfrig::reconstruct {
+
+using Epsilon = std::array<double, 3>;
+
+// eps_c from the data (never 0: a channel whose 10th percentile is <= 0 gets 1e-6 of its
+// largest value, or 1e-12).
+Epsilon LossEpsilon(const std::vector<DirectionSample>& samples, double fraction = 0.01);
+
+// Weighted RMS of r over samples and channels (the validation score); NaN without samples.
+double LogLossRms(const brdf::Brdf& model, const std::vector<DirectionSample>& samples,
+                  const Epsilon& eps);
+
+// The weight of one sample (cos_i · cos_o · pixels).
+inline double LossWeight(const DirectionSample& s) { return s.l.z() * s.v.z() * s.weight; }
+
+}  // namespace brdfrig::reconstruct

@@ -1,0 +1,176 @@
+#include "reconstruct/measure_position.h"
+#include "common/angles.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/exr_io.h"
+#include "common/format.h"
+
+namespace brdfrig::reconstruct {
+namespace {
+
+class StageTimer {
+ public:
+  StageTimer(std::map<std::string, double>* seconds, std::string stage)
+      : seconds_(seconds), stage_(std::move(stage)), start_(std::chrono::steady_clock::now()) {}
+  ~StageTimer() {
+    (*seconds_)[stage_] +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::map<std::string, double>* seconds_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+struct LoadedBracket {
+  std::vector<cv::Mat> images;
+  std::vector<double> exposures;
+};
+
+LoadedBracket LoadBracket(const CapturePosition& position, const geometry::Intrinsics& intrinsics) {
+  if (position.frames.empty()) throw Error("no photos recorded");
+  LoadedBracket bracket;
+  for (const BracketFrame& frame : position.frames) {
+    cv::Mat image = ReadPhoto(frame.file.string());
+    if (image.cols != intrinsics.width || image.rows != intrinsics.height) {
+      throw FileError(frame.file.string(), "photo is " + std::to_string(image.cols) + "×" +
+                                               std::to_string(image.rows) + ", the rig's camera " +
+                                               std::to_string(intrinsics.width) + "×" +
+                                               std::to_string(intrinsics.height));
+    }
+    if (!bracket.images.empty() && image.type() != bracket.images[0].type()) {
+      throw FileError(frame.file.string(), "photo format differs from the rest of its bracket");
+    }
+    bracket.images.push_back(std::move(image));
+    bracket.exposures.push_back(frame.exposure_s);
+  }
+  return bracket;
+}
+
+}  // namespace
+
+std::string PositionName(int index) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "p%02d", index);
+  return name;
+}
+
+MeasuredPosition MeasurePosition(const CapturePosition& position,
+                                 const geometry::RigGeometry& nominal,
+                                 const MeasureOptions& options, MeasureState* state) {
+  MeasuredPosition data;
+  PositionReport& report = data.report;
+  report.index = position.index;
+  const std::string name = PositionName(position.index);
+  HdrImage& hdr = state->hdr;
+  std::map<std::string, double> local_seconds;
+  if (!state->stage_seconds) state->stage_seconds = &local_seconds;
+  LoadedBracket bracket;
+  {
+    StageTimer timer(state->stage_seconds, "load");
+    bracket = LoadBracket(position, nominal.intrinsics);
+  }
+  {
+    StageTimer timer(state->stage_seconds, "hdr");
+    if (bracket.images[0].depth() == CV_8U && state->response.empty()) {
+      state->response = RecoverResponse(bracket.images, bracket.exposures);
+    }
+    MergeBracketInto(bracket.images, bracket.exposures, state->response, &hdr, options.hdr);
+  }
+  report.invalid_fraction = hdr.invalid_fraction;
+  if (!options.hdr_dir.empty()) {
+    StageTimer timer(state->stage_seconds, "write");
+    WriteRadianceExr(options.hdr_dir / (name + ".exr"), hdr.radiance);
+    std::vector<std::uint8_t> png;
+    cv::imencode(".png", hdr.valid, png);
+    WriteFileAtomically(options.hdr_dir / (name + "_valid.png"),
+                        std::string(png.begin(), png.end()));
+  }
+  const geometry::CameraPose nominal_pose = nominal.CameraAt(position.axis_readings);
+  PoseEstimate pose;
+  {
+    StageTimer timer(state->stage_seconds, "target");
+    const TargetCorners corners = FindCutoutCorners(hdr.radiance, hdr.valid, nominal.intrinsics,
+                                                    nominal_pose, nominal.target, options.target);
+    pose = EstimatePose(corners, nominal.intrinsics, nominal.target, nominal_pose, options.target);
+  }
+  report.reprojection_rms_px = pose.reprojection_rms_px;
+  report.camera_disagreement_m = pose.nominal_disagreement_m;
+  if (pose.nominal_disagreement_m > options.target.warn_camera_offset_m) {
+    report.warnings.push_back("camera pose " + Fixed(pose.nominal_disagreement_m * 1e3, 1) +
+                              " mm from the rig's nominal: check the rig file, or the cut-out's "
+                              "edges in badly exposed photos");
+  }
+  const PlaneView view(nominal.intrinsics, pose.pose);
+  {
+    StageTimer timer(state->stage_seconds, "light");
+    report.light = EstimateLight(hdr.radiance, hdr.valid, view, nominal.target,
+                                 nominal.LightAt(position.axis_readings), options.light);
+  }
+  for (const std::string& w : report.light.warnings) report.warnings.push_back(w);
+  {
+    StageTimer timer(state->stage_seconds, "radiometry");
+    report.radiometry = CalibrateFromPaper(hdr.radiance, hdr.valid, view, report.light.position,
+                                           nominal.target, options.radiometry);
+  }
+  if (report.radiometry.relative_spread > options.radiometry.warn_spread) {
+    report.warnings.push_back(
+        "paper brightness spread " + Fixed(report.radiometry.relative_spread, 2) +
+        ": the paper is noisy, clipped or unevenly lit in every exposure, so the BRDF scale "
+        "is unreliable (bracket so that the paper is well exposed in one exposure)");
+  }
+  {
+    StageTimer timer(state->stage_seconds, "samples");
+    data.samples = ExtractSamples(hdr.radiance, hdr.valid, view, report.light.position,
+                                  report.radiometry, nominal.target, options.samples);
+  }
+  if (data.samples.theta.size() < 16) {
+    throw Error("only " + std::to_string(data.samples.pixels_used) + " usable sample pixels (" +
+                std::to_string(data.samples.pixels_invalid) +
+                " clipped in every exposure): add a shorter exposure");
+  }
+  if (report.light.from_highlight && options.light_refine.enabled) {
+    StageTimer timer(state->stage_seconds, "light");
+    const LightRefinement refined = RefineLight(
+        hdr.radiance, hdr.valid, view, nominal.target, options.samples, report.light.position,
+        report.radiometry, FitSlice(data.samples, options.fit), options.light_refine);
+    if (refined.accepted) {
+      report.light_refinement_rad = refined.shift_rad;
+      report.light.position = refined.position;
+      const geometry::Vec3 nominal_light = nominal.LightAt(position.axis_readings);
+      const geometry::Vec3 at = report.light.highlight_in_world;
+      const geometry::Vec3 a = refined.position - at, b = nominal_light - at;
+      report.light.nominal_disagreement_rad = std::atan2(a.cross(b).norm(), a.dot(b));
+      report.radiometry = CalibrateFromPaper(hdr.radiance, hdr.valid, view, report.light.position,
+                                             nominal.target, options.radiometry);
+      data.samples = ExtractSamples(hdr.radiance, hdr.valid, view, report.light.position,
+                                    report.radiometry, nominal.target, options.samples);
+    } else {
+      report.warnings.push_back("light refinement rejected (moved " +
+                                std::to_string(Degrees(refined.shift_rad)) +
+                                "°): the highlight's light is used");
+    }
+  }
+  {
+    StageTimer timer(state->stage_seconds, "samples");
+    data.directions = ExtractDirectionSamples(hdr.radiance, hdr.valid, view, report.light.position,
+                                              report.radiometry, nominal.target, options.samples,
+                                              options.directions);
+    data.directions.position = position.index;
+  }
+  report.theta_in = data.samples.theta_in;
+  report.samples = data.samples.pixels_used;
+  report.direction_samples = static_cast<int>(data.directions.samples.size());
+  report.used = true;
+  if (state->stage_seconds == &local_seconds) state->stage_seconds = nullptr;
+  return data;
+}
+
+}  // namespace brdfrig::reconstruct

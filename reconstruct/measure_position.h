@@ -1,0 +1,74 @@
+// Stage 1 of the reconstruction: one capture position's photos → HDR radiance → cut-out corners
+// and camera pose → light → paper radiometry → BRDF samples, both binned by theta for the
+// seed's slices and with their directions for the microfacet fits. A position that cannot be
+// measured throws brdfrig::Error with the reason (the pipeline reports it and goes on).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "reconstruct/capture_set.h"
+#include "reconstruct/direction_samples.h"
+#include "reconstruct/hdr_merge.h"
+#include "reconstruct/light_estimate.h"
+#include "reconstruct/light_refine.h"
+#include "reconstruct/radiometry.h"
+#include "reconstruct/samples.h"
+#include "reconstruct/slice_fit.h"
+#include "reconstruct/target.h"
+
+namespace brdfrig::reconstruct {
+
+struct PositionReport {
+  int index = 0;
+  bool used = false;
+  std::string skipped_reason;  // why the position was left out (used == false)
+  double theta_in = 0;
+  double invalid_fraction = 0;  // pixels clipped in every exposure
+  double reprojection_rms_px = 0;
+  double camera_disagreement_m = 0;  // measured vs nominal camera centre
+  double edge_line_rms_px = 0;       // scatter of the cut-out edge points about their lines
+  LightEstimate light;               // position: after refinement
+  double light_refinement_rad = 0;   // how far the joint fit moved the highlight's light
+  Radiometry radiometry;
+  int samples = 0;
+  int direction_samples = 0;  // after block averaging
+  std::vector<std::string> warnings;
+};
+
+struct MeasureOptions {
+  HdrMergeOptions hdr;
+  TargetOptions target;
+  LightOptions light;
+  LightRefineOptions light_refine;
+  RadiometryOptions radiometry;
+  SampleOptions samples;
+  DirectionSampleOptions directions;
+  SliceFitOptions fit;            // the slice fit the light refinement uses
+  std::filesystem::path hdr_dir;  // when set: pNN.exr and pNN_valid.png written there
+};
+
+// Everything measured at one position before any model is fitted.
+struct MeasuredPosition {
+  PositionReport report;
+  BrdfSamples samples;          // binned by theta (the seed's slices)
+  DirectionSamples directions;  // with directions (the microfacet rungs)
+};
+
+// State shared by the positions of one capture.
+struct MeasureState {
+  cv::Mat response;  // recovered once per capture for non-linear (8-bit) photos
+  HdrImage hdr;      // one buffer reused by every position's merge
+  std::map<std::string, double>* stage_seconds = nullptr;
+};
+
+std::string PositionName(int index);  // "p03"
+
+MeasuredPosition MeasurePosition(const CapturePosition& position,
+                                 const geometry::RigGeometry& nominal,
+                                 const MeasureOptions& options, MeasureState* state);
+
+}  // namespace brdfrig::reconstruct
