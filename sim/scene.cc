@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "coverage/design_request.h"
 #include "sim/sample_brdf.h"
 #include "sim/yaml_values.h"
 
@@ -101,6 +102,7 @@ TimingDescription ParseTiming(const YamlNode& node, const rig::RigGeometry& rig)
 rig::AxisPositions ParsePositionDegrees(const YamlNode& node, const rig::RigGeometry& rig) {
   rig::AxisPositions positions;
   for (const std::string& name : node.Keys()) {
+    if (name == "validation") continue;  // the position's role, read by ParseCapture
     const YamlNode value = node.Required(name);
     const rig::RotationAxis* axis = rig.FindAxis(name);
     if (!axis) value.Fail("no axis named '" + name + "' in rig.axes");
@@ -120,8 +122,26 @@ CapturePlan ParseCapture(const YamlNode& node, const rig::RigGeometry& rig) {
     for (double t : c.exposures) exposures->Positive(t);
   }
   if (auto positions = node.Optional("positions")) {
-    for (const YamlNode& item : positions->Elements()) {
-      c.positions.push_back(ParsePositionDegrees(item, rig));
+    if (positions->IsMap()) {
+      const YamlNode request = positions->Required("design");
+      positions->Finish();
+      const coverage::DesignOptions options = coverage::ParseDesignRequest(request);
+      coverage::PlanDesign design;
+      try {
+        design = coverage::DesignPlan(rig, options);
+      } catch (const Error& e) {
+        request.Fail(e.what());
+      }
+      c.positions = design.Positions();
+      c.validation = design.Validation();
+      c.design = design.ToString();
+    } else {
+      for (const YamlNode& item : positions->Elements()) {
+        bool validation = false;
+        if (auto v = item.Optional("validation")) validation = v->AsBool();
+        c.positions.push_back(ParsePositionDegrees(item, rig));
+        c.validation.push_back(validation);
+      }
     }
   }
   node.Finish();
