@@ -21,6 +21,9 @@ struct CapturePosition {
   int index = 0;
   rig::AxisPositions axis_readings;  // as the rig reported them (radians)
   std::vector<BracketFrame> frames;  // any order; sorted by exposure when merged
+  // A validation position of the plan: captured like the rest, never fitted (the result lists
+  // it for the comparison of its photos with the fit's rendering).
+  bool validation = false;
 };
 
 struct CaptureSet {

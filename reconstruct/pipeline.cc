@@ -125,6 +125,10 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
 
   std::vector<const CapturePosition*> positions;
   for (const CapturePosition& p : capture.positions) {
+    if (p.validation) {
+      result.validation.push_back(p);  // never fitted
+      continue;
+    }
     if (options.use_positions.empty() ||
         std::find(options.use_positions.begin(), options.use_positions.end(), p.index) !=
             options.use_positions.end()) {
