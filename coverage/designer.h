@@ -41,7 +41,7 @@ struct DesignOptions {
   int max_candidates = 50000;  // 100 .. 1000000
   int refine_passes = 4;       // 0 .. 20
   double min_separation_deg = 10;
-  double max_view_deg = 75;
+  double max_view_deg = 70;  // beyond, the cut-out is a thin sliver: few pixels, a poor pose
   double max_light_deg = 85;
   double image_margin_px = 10;
   double peak_theta_h_deg = 8;
