@@ -54,6 +54,8 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
   } else {
     plan = LoadPlanFile(options.plan_file);
   }
+  // A designed plan gets its positions from the rig (deterministic, so a resume continues it).
+  ResolvePlan(&plan, description.geometry);
   const PlanCheckReport check = CheckPlan(plan, description);
   if (!check.ok()) {
     std::string message = "the plan cannot run on this rig:";

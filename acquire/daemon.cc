@@ -139,7 +139,8 @@ void Daemon::RunJob(const Job& job) {
   std::string result;
   try {
     std::unique_ptr<SessionStore> store = SessionStore::Open(dir);
-    const Plan plan = LoadPlanString(store->PlanText(), store->PlanSource());
+    Plan plan = LoadPlanString(store->PlanText(), store->PlanSource());
+    ResolvePlan(&plan, rig_.description.geometry);
     const bool resumed = store->HasRuns();
     Log("session " + job.name + (resumed ? ": resumed" : ": started"));
     RunState last_state = RunState::kIdle;
@@ -284,6 +285,7 @@ HttpResponse Daemon::Submit(const std::string& body) {
   json warnings = json::array();
   try {
     plan = LoadPlanString(request["plan"].get<std::string>(), "plan of " + name);
+    ResolvePlan(&plan, rig_.description.geometry);
     const PlanCheckReport check = CheckPlan(plan, rig_.description);
     for (const std::string& w : check.warnings) warnings.push_back(w);
     if (!check.ok()) {

@@ -4,6 +4,7 @@
 
 #include "common/angles.h"
 #include "common/atomic_file.h"
+#include "coverage/design_request.h"
 
 namespace brdfrig::acquire {
 namespace {
@@ -15,6 +16,10 @@ std::vector<PlannedPosition> ParseExplicitPositions(const YamlNode& list) {
     PlannedPosition position;
     position.line = item.line();
     for (const std::string& axis : item.Keys()) {
+      if (axis == "validation") {
+        position.validation = item.Required(axis).AsBool();
+        continue;
+      }
       position.axes[axis] = Radians(item.Required(axis).AsDouble());
     }
     if (position.axes.empty()) item.Fail("a position needs at least one axis angle");
@@ -88,13 +93,18 @@ Plan ParsePlan(const YamlNode& root, const std::string& text) {
   const YamlNode positions = root.Required("positions");
   if (positions.IsSequence()) {
     plan.positions = ParseExplicitPositions(positions);
+  } else if (positions.IsMap() && positions.Has("design")) {
+    const YamlNode design = positions.Required("design");
+    plan.design = coverage::ParseDesignRequest(design);
+    plan.design_line = design.line();
+    positions.Finish();
   } else if (positions.IsMap()) {
     plan.positions = ParseSymmetricArms(positions.Required("symmetric_arms"));
     positions.Finish();
   } else {
-    positions.Fail("expected a list of positions or {symmetric_arms: {...}}");
+    positions.Fail("expected a list of positions, {symmetric_arms: {...}} or {design: {...}}");
   }
-  if (plan.positions.empty()) positions.Fail("the plan has no position");
+  if (plan.positions.empty() && !plan.design) positions.Fail("the plan has no position");
   if (auto exposures = root.Optional("exposures")) {
     ParseExposures(*exposures, &plan);
   } else {
@@ -116,6 +126,25 @@ Plan LoadPlanFile(const std::filesystem::path& path) {
 
 Plan LoadPlanString(const std::string& text, const std::string& source_name) {
   return ParsePlan(LoadYamlString(text, source_name), text);
+}
+
+std::optional<coverage::PlanDesign> ResolvePlan(Plan* plan, const geometry::RigGeometry& rig) {
+  if (!plan->design) return std::nullopt;
+  coverage::PlanDesign design;
+  try {
+    design = coverage::DesignPlan(rig, *plan->design);
+  } catch (const Error& e) {
+    throw Error(plan->file + ":" + std::to_string(plan->design_line) + ": " + e.what());
+  }
+  plan->positions.clear();
+  for (const coverage::DesignedPosition& d : design.positions) {
+    PlannedPosition position;
+    position.axes = d.coverage.axes;
+    position.line = plan->design_line;
+    position.validation = d.coverage.validation;
+    plan->positions.push_back(std::move(position));
+  }
+  return design;
 }
 
 }  // namespace brdfrig::acquire

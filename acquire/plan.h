@@ -10,6 +10,10 @@
 //   # ... or a preset: camera_axis = θ and light_axis = −θ for `count` θ in [from, to]
 //   # positions: {symmetric_arms: {from_deg: 20, to_deg: 60, count: 5,
 //   #                              camera_axis: camera_arm, light_axis: light_arm}}
+//   # ... or a plan designed for the rig by (θh, θd) coverage (coverage/designer.h):
+//   # positions: {design: {count: 6, validation: 1}}
+//   # An explicit position can be a validation position (captured, never fitted):
+//   #   - {camera_arm: 30, light_arm: -10, validation: true}
 //   exposures: [0.001, 0.008, 0.0666667]   # seconds, the bracket of every position, or
 //   # exposures: {auto: {count: 3, metering_s: 0.008, highlight_max: 0.8, paper_level: 0.4}}
 //   settle_s: 0.2                   # wait after a move before the first shot (default 0.2)
@@ -19,10 +23,12 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/yaml_reader.h"
+#include "coverage/designer.h"
 #include "geometry/rig_geometry.h"
 
 namespace brdfrig::acquire {
@@ -30,6 +36,7 @@ namespace brdfrig::acquire {
 struct PlannedPosition {
   geometry::AxisPositions axes;  // radians
   int line = 0;                  // where the position is written in the plan (1-based)
+  bool validation = false;       // captured like the rest, left out of the fit
 };
 
 // Auto-bracketing: a metering shot at each position decides the bracket so that the highlight
@@ -48,7 +55,10 @@ struct Plan {
   std::string sample;
   std::string operator_name;
   std::string notes;
+  // Empty until ResolvePlan when the plan asks for a design (the rig decides the positions).
   std::vector<PlannedPosition> positions;
+  std::optional<coverage::DesignOptions> design;
+  int design_line = 0;
   std::vector<double> exposures_s;  // explicit bracket (seconds); empty when auto
   bool auto_bracket = false;
   AutoBracket auto_settings;
@@ -66,5 +76,11 @@ struct Plan {
 Plan ParsePlan(const YamlNode& root, const std::string& text);
 Plan LoadPlanFile(const std::filesystem::path& path);
 Plan LoadPlanString(const std::string& text, const std::string& source_name);
+
+// Fills the positions of a designed plan for this rig (deterministic: the same plan and rig
+// give the same positions, so a resumed session continues the same plan); returns the design
+// (nullopt for an explicit plan, which is left as it is). Throws brdfrig::Error when the rig
+// cannot satisfy the request.
+std::optional<coverage::PlanDesign> ResolvePlan(Plan* plan, const geometry::RigGeometry& rig);
 
 }  // namespace brdfrig::acquire

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "common/angles.h"
@@ -70,10 +71,19 @@ double EstimateMoveS(double distance, const TimingAssumptions& timing) {
   return d / v + v / a;
 }
 
-PlanCheckReport CheckPlan(const Plan& plan, const geometry::RigDescription& rig,
+PlanCheckReport CheckPlan(const Plan& plan_in, const geometry::RigDescription& rig,
                           const TimingAssumptions& timing) {
   PlanCheckReport report;
   const geometry::RigGeometry& g = rig.geometry;
+  Plan plan = plan_in;
+  try {
+    if (const auto design = ResolvePlan(&plan, g)) report.design = design->ToString();
+  } catch (const Error& e) {
+    report.errors.push_back(e.what());
+    return report;
+  }
+  report.resolved = plan.positions;
+  report.bracket_s = plan.exposures_s;
   geometry::AxisPositions previous;  // axes start where homing leaves them: 0
   for (const geometry::RotationAxis& axis : g.axes) previous[axis.name] = 0;
   const int shots = plan.BracketSize();
@@ -105,7 +115,8 @@ PlanCheckReport CheckPlan(const Plan& plan, const geometry::RigDescription& rig,
         previous[name] = angle;
       }
       CheckHighlight(g, planned.axes, &check);
-      if (!check.highlight_visible) {
+      // A designed plan places some positions off the specular direction on purpose.
+      if (!check.highlight_visible && !plan.design) {
         report.warnings.push_back(At(plan, planned.line) + "position " + std::to_string(i) +
                                   ": the highlight is not on the cut-out in the image (mirror "
                                   "point at x = " +
@@ -124,6 +135,16 @@ PlanCheckReport CheckPlan(const Plan& plan, const geometry::RigDescription& rig,
     }
     report.downloads_s += shots * timing.download_s;
     report.positions.push_back(check);
+  }
+  if (report.ok()) {
+    std::vector<geometry::AxisPositions> axes;
+    std::vector<bool> validation;
+    for (const PlannedPosition& p : plan.positions) {
+      axes.push_back(p.axes);
+      validation.push_back(p.validation);
+    }
+    report.coverage = coverage::ComputeCoverage(g, axes, validation);
+    report.has_coverage = true;
   }
   return report;
 }
@@ -144,10 +165,53 @@ std::string PlanCheckReport::ToString() const {
                 "downloads %.1f s)\n",
                 EstimatedDurationS(), moves_s, settle_s, exposures_s, downloads_s);
   out << row;
+  if (has_coverage) out << coverage.ToString();
+  if (!design.empty()) out << design;
   for (const std::string& e : errors) out << "error: " << e << "\n";
   for (const std::string& w : warnings) out << "warning: " << w << "\n";
   out << (ok() ? "plan OK" : "plan has errors") << "\n";
   return out.str();
+}
+
+std::string PlanCheckReport::ToJson() const {
+  nlohmann::json j;
+  j["ok"] = ok();
+  j["errors"] = errors;
+  j["warnings"] = warnings;
+  j["exposures_s"] = bracket_s;  // empty: auto-bracketing
+  j["estimated_duration_s"] = EstimatedDurationS();
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t i = 0; i < resolved.size(); ++i) {
+    nlohmann::json p;
+    nlohmann::json axes = nlohmann::json::object();
+    for (const auto& [name, angle] : resolved[i].axes) axes[name] = Degrees(angle);
+    p["axes_deg"] = axes;
+    p["validation"] = resolved[i].validation;
+    if (has_coverage && i < coverage.positions.size()) {
+      const coverage::PositionCoverage& c = coverage.positions[i];
+      p["observed"] = c.observed;
+      p["theta_in_deg"] = Degrees(c.theta_in);
+      p["theta_out_deg"] = Degrees(c.theta_out);
+      p["theta_h_deg"] = {Degrees(c.theta_h_min), Degrees(c.theta_h_max)};
+      p["theta_d_deg"] = {Degrees(c.theta_d_min), Degrees(c.theta_d_max)};
+      p["cells"] = c.cells.size();
+    }
+    if (i < positions.size()) p["highlight_visible"] = positions[i].highlight_visible;
+    list.push_back(p);
+  }
+  j["positions"] = list;
+  if (has_coverage) {
+    j["coverage"] = {
+        {"theta_h_bins", coverage.grid.theta_h_bins},
+        {"theta_d_bins", coverage.grid.theta_d_bins},
+        {"theta_h_axis", "sqrt"},
+        {"covered_fraction", coverage.covered_fraction},
+        {"covered_fraction_with_validation", coverage.covered_fraction_with_validation},
+        {"theta_h_fraction", coverage.theta_h_fraction},
+        {"theta_d_fraction", coverage.theta_d_fraction}};
+  }
+  if (!design.empty()) j["design"] = design;
+  return j.dump(2) + "\n";
 }
 
 }  // namespace brdfrig::acquire

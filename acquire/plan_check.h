@@ -1,7 +1,9 @@
 // The dry run of a plan against a rig (`brdfrig plan check`): no device is opened. Checks
 // that every axis exists and every angle is within the axis limits, estimates how long the
 // session will take, and uses the nominal geometry to tell whether the specular highlight
-// falls on the cut-out (inside the image) at each position.
+// falls on the cut-out (inside the image) at each position, and which part of the (θh, θd)
+// domain each position observes (coverage/coverage.h). A designed plan is resolved for the rig
+// first, and the design's explanation is part of the report.
 #pragma once
 
 #include <string>
@@ -9,6 +11,7 @@
 
 #include "acquire/plan.h"
 #include "common/angles.h"
+#include "coverage/coverage.h"
 #include "rig/rig_file.h"
 
 namespace brdfrig::acquire {
@@ -36,12 +39,20 @@ struct PositionCheck {
 
 struct PlanCheckReport {
   std::vector<PositionCheck> positions;
+  std::vector<PlannedPosition> resolved;  // the positions checked (a design's, once resolved)
+  std::vector<double> bracket_s;          // the plan's explicit bracket (empty: auto)
+  coverage::CoverageMap coverage;         // computed when every position is reachable
+  bool has_coverage = false;
+  std::string design;                 // the designer's explanation, for a designed plan
   std::vector<std::string> errors;    // each "file:line:column: ..." — the plan cannot run
   std::vector<std::string> warnings;  // runs, but the data may be poor (highlight not seen)
   double moves_s = 0, exposures_s = 0, downloads_s = 0, settle_s = 0;
   double EstimatedDurationS() const { return moves_s + exposures_s + downloads_s + settle_s; }
   bool ok() const { return errors.empty(); }
-  std::string ToString() const;  // a table, then errors and warnings
+  std::string ToString() const;  // a table, the coverage, the design, errors and warnings
+  // Resolved positions (axis values in degrees, role), exposures, coverage figures and the
+  // duration estimate, for scripts (`brdfrig plan check --json`).
+  std::string ToJson() const;
 };
 
 // Estimated time of one axis move (trapezoidal velocity profile).

@@ -27,7 +27,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kSchemaVersion = 1;
+// 2: meta holds 'validation_positions' (JSON list of position indices); 1 had no roles.
+constexpr int kSchemaVersion = 2;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -159,7 +160,14 @@ std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, co
         .Bind(1, std::to_string(kSchemaVersion))
         .Run();
     nlohmann::json positions = nlohmann::json::array();
-    for (const PlannedPosition& p : plan.positions) positions.push_back(AxesJson(p.axes));
+    nlohmann::json validation = nlohmann::json::array();
+    for (std::size_t i = 0; i < plan.positions.size(); ++i) {
+      positions.push_back(AxesJson(plan.positions[i].axes));
+      if (plan.positions[i].validation) validation.push_back(i);
+    }
+    Statement(*db, "INSERT INTO meta VALUES ('validation_positions', ?1)")
+        .Bind(1, validation.dump())
+        .Run();
     nlohmann::json exposures =
         plan.auto_bracket ? nlohmann::json("auto") : nlohmann::json(plan.exposures_s);
     Statement(*db,

@@ -36,10 +36,13 @@ std::string SimulatedRigYaml(const fs::path& scene_file, const sim::Scene& scene
 std::string PlanYaml(const sim::Scene& scene) {
   std::string yaml =
       "sample: demo\noperator: brdfrig demo\nnotes: \"" + scene.Summary() + "\"\npositions:\n";
-  for (const geometry::AxisPositions& position : scene.capture.positions) {
+  for (std::size_t i = 0; i < scene.capture.positions.size(); ++i) {
     std::string entry;
-    for (const auto& [axis, angle] : position) {
+    for (const auto& [axis, angle] : scene.capture.positions[i]) {
       entry += (entry.empty() ? "" : ", ") + axis + ": " + Fixed(Degrees(angle), 6);
+    }
+    if (i < scene.capture.validation.size() && scene.capture.validation[i]) {
+      entry += ", validation: true";
     }
     yaml += "  - {" + entry + "}\n";
   }

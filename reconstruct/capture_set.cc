@@ -37,6 +37,7 @@ CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir) {
       const int index = frame.at("position_index").get<int>();
       CapturePosition& p = by_index[index];
       p.index = index;
+      p.validation = frame.value("validation", false);  // absent in older capture.json files
       for (const auto& [axis, value] : frame.at("axis_readings_rad").items()) {
         p.axis_readings[axis] = value.get<double>();
       }
@@ -80,6 +81,8 @@ CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
     }
     CapturePosition position;
     position.index = index;
+    position.validation = index < static_cast<int>(session.planned_validation.size()) &&
+                          session.planned_validation[static_cast<std::size_t>(index)];
     position.axis_readings = bracket.begin()->second->axis_readings;
     for (const auto& [bracket_index, frame] : bracket) {
       position.frames.push_back({frame->file, frame->exposure_s});

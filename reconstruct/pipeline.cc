@@ -59,7 +59,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   for (const std::string& w : capture.warnings) say("warning: " + w);
   if (!options.hdr_dir.empty()) std::filesystem::create_directories(options.hdr_dir);
 
-  // Stage 1: measure every position.
+  // Stage 1: measure every position. Validation positions (the plan's, or named in the
+  // options) are measured to score the ladder's rungs, never fitted.
   MeasureOptions measure{options.hdr,          options.target,     options.light,
                          options.light_refine, options.radiometry, options.samples,
                          options.directions,   options.fit,        options.hdr_dir};
@@ -67,8 +68,11 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   state.stage_seconds = &result.stage_seconds;
   std::vector<PositionSamples> fit_positions, validation_positions;
   for (const CapturePosition& position : capture.positions) {
+    const bool validation =
+        position.validation || Contains(options.validation_positions, position.index);
+    if (position.validation) result.validation.push_back(position);
     if (!options.use_positions.empty() && !Contains(options.use_positions, position.index) &&
-        !Contains(options.validation_positions, position.index)) {
+        !validation) {
       continue;
     }
     const std::string name = PositionName(position.index);
@@ -77,9 +81,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
       MeasuredPosition data = MeasurePosition(position, capture.nominal, measure, &state);
       PositionSamples samples{position.index, std::move(data.samples), std::move(data.directions),
                               data.report.warnings};
-      (Contains(options.validation_positions, position.index) ? validation_positions
-                                                              : fit_positions)
-          .push_back(std::move(samples));
+      (validation ? validation_positions : fit_positions).push_back(std::move(samples));
       result.positions.push_back(std::move(data.report));
     } catch (const Error& e) {
       PositionReport report;

@@ -47,7 +47,10 @@ struct ReconstructionResult {
   LadderResult ladder;  // every rung fitted, with its scores; material is the chosen one
   std::vector<std::string> warnings;
   std::map<std::string, double> stage_seconds;  // wall time per stage, summed over positions
-  std::string Summary() const;                  // a short human report
+  // The capture's validation positions (photos, exposures, axis readings), left out of the fit:
+  // what a report compares with the fit's rendering.
+  std::vector<CapturePosition> validation;
+  std::string Summary() const;  // a short human report
 };
 
 using ProgressCallback = std::function<void(const std::string&)>;

@@ -59,6 +59,18 @@ SessionContents ReadSession(const fs::path& dir) {
     auto_bracket = exposures.is_string();
     if (!auto_bracket) explicit_bracket = exposures.get<std::vector<double>>();
   }
+  s.planned_validation.assign(s.planned_positions.size(), false);
+  {
+    // Schema 2 records the validation positions in meta; schema 1 sessions have no such row.
+    Statement q(db, "SELECT value FROM meta WHERE key = 'validation_positions'");
+    if (q.Step()) {
+      for (const int index : nlohmann::json::parse(q.Text(0)).get<std::vector<int>>()) {
+        if (index >= 0 && index < static_cast<int>(s.planned_validation.size())) {
+          s.planned_validation[static_cast<std::size_t>(index)] = true;
+        }
+      }
+    }
+  }
   {
     Statement q(db, "SELECT exit_status, reason, stopped_at FROM runs ORDER BY id DESC LIMIT 1");
     if (q.Step()) {

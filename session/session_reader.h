@@ -37,6 +37,9 @@ struct SessionContents {
   std::string exit_status;
   std::string stop_reason;
   std::vector<geometry::AxisPositions> planned_positions;  // radians
+  // Per planned position: a validation position (captured, not fitted). Schema 1 sessions
+  // have no roles: every position is fitted.
+  std::vector<bool> planned_validation;
   // Requested exposures (s) per position: the plan's explicit bracket, or for auto-bracketing
   // the exposures chosen by metering (empty for a position not captured yet).
   std::vector<std::vector<double>> planned_brackets;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "common/angles.h"
+#include "coverage/design_request.h"
 #include "sim/sample_brdf.h"
 #include "sim/yaml_values.h"
 
@@ -97,6 +98,7 @@ geometry::AxisPositions ParsePositionDegrees(const YamlNode& node,
                                              const geometry::RigGeometry& rig) {
   geometry::AxisPositions positions;
   for (const std::string& name : node.Keys()) {
+    if (name == "validation") continue;  // the position's role, read by ParseCapture
     const YamlNode value = node.Required(name);
     const geometry::RotationAxis* axis = rig.FindAxis(name);
     if (!axis) value.Fail("no axis named '" + name + "' in rig.axes");
@@ -116,8 +118,26 @@ CapturePlan ParseCapture(const YamlNode& node, const geometry::RigGeometry& rig)
     for (double t : c.exposures) exposures->Positive(t);
   }
   if (auto positions = node.Optional("positions")) {
-    for (const YamlNode& item : positions->Elements()) {
-      c.positions.push_back(ParsePositionDegrees(item, rig));
+    if (positions->IsMap()) {
+      const YamlNode request = positions->Required("design");
+      positions->Finish();
+      const coverage::DesignOptions options = coverage::ParseDesignRequest(request);
+      coverage::PlanDesign design;
+      try {
+        design = coverage::DesignPlan(rig, options);
+      } catch (const Error& e) {
+        request.Fail(e.what());
+      }
+      c.positions = design.Positions();
+      c.validation = design.Validation();
+      c.design = design.ToString();
+    } else {
+      for (const YamlNode& item : positions->Elements()) {
+        bool validation = false;
+        if (auto v = item.Optional("validation")) validation = v->AsBool();
+        c.positions.push_back(ParsePositionDegrees(item, rig));
+        c.validation.push_back(validation);
+      }
     }
   }
   node.Finish();

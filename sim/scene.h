@@ -8,7 +8,8 @@
 //   sensor:     {format: png16|tiff16|jpeg8, gain, jpeg_quality, shutter_speeds, model}
 //   render:     {supersampling: N, seed: S}
 //   timing:     axis speed/acceleration, camera overhead/download, real_time_factor
-//   capture:    {exposures: [s, ...], positions: [{axis: degrees, ...}, ...]}
+//   capture:    {exposures: [s, ...], positions: [{axis: degrees, ..., validation: bool}, ...]
+//                or positions: {design: {count: 6, validation: 1, ...}} (coverage/designer.h)}
 //   effects:    see sim/effects.h
 //   faults:     scheduled device faults (see SimFault)
 #pragma once
@@ -84,8 +85,13 @@ struct SimFault {
 };
 
 struct CapturePlan {
-  std::vector<double> exposures;                   // seconds
+  std::vector<double> exposures;              // seconds
   std::vector<geometry::AxisPositions> positions;  // radians
+  // Per position: a validation position (captured, never fitted). Same length as positions.
+  std::vector<bool> validation;
+  // For `positions: {design: {...}}`: the designer's explanation (the positions are resolved
+  // when the scene is read, from the scene's own rig).
+  std::string design;
 };
 
 struct Scene {

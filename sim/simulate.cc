@@ -97,6 +97,9 @@ SimulateSummary Simulate(const SimulateOptions& options) {
   nlohmann::json log = {{"scene", options.scene.string()}, {"frames", nlohmann::json::array()}};
 
   for (std::size_t p = 0; p < positions.size(); ++p) {
+    // The scene's roles apply to the scene's own positions, not to --positions.
+    const bool validation = options.positions.empty() && p < scene.capture.validation.size() &&
+                            scene.capture.validation[p];
     nlohmann::json readings = nlohmann::json::object();
     for (const auto& [name, angle] : positions[p]) {
       if (!axes.count(name)) throw Error("positions: the scene has no axis named '" + name + "'");
@@ -118,6 +121,7 @@ SimulateSummary Simulate(const SimulateOptions& options) {
       WriteFileAtomically(summary.photos_dir / file, frame.bytes);
       log["frames"].push_back({{"file", file},
                                {"position_index", p},
+                               {"validation", validation},
                                {"axis_readings_rad", readings},
                                {"exposure_s", frame.exposure_s},
                                {"exposure_duration_s", frame.exposure_duration_s},

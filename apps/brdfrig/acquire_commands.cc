@@ -14,6 +14,8 @@
 #include "acquire/plan_check.h"
 #include "apps/brdfrig/progress_line.h"
 #include "session/session_verify.h"
+#include "common/atomic_file.h"
+#include "coverage/coverage.h"
 
 namespace brdfrig::apps {
 namespace {
@@ -77,16 +79,29 @@ class AbortOnSignal {
 void RegisterAcquireCommands(CLI::App& app) {
   CLI::App* plan = app.add_subcommand("plan", "Capture plans");
   plan->require_subcommand(1);
-  auto check_args = std::make_shared<std::pair<std::string, std::string>>();
+  struct CheckArgs {
+    std::string rig, plan, svg;
+    bool json = false;
+  };
+  auto check_args = std::make_shared<CheckArgs>();
   CLI::App* check = plan->add_subcommand(
-      "check", "Dry run of a plan against a rig: limits, duration, highlight visibility");
-  check->add_option("--rig", check_args->first, "rig.yaml")->required();
-  check->add_option("--plan", check_args->second, "plan.yaml")->required();
+      "check",
+      "Dry run of a plan against a rig: limits, duration, highlight, (θh, θd) coverage; resolves "
+      "and explains a designed plan");
+  check->add_option("--rig", check_args->rig, "rig.yaml")->required();
+  check->add_option("--plan", check_args->plan, "plan.yaml")->required();
+  check->add_flag("--json", check_args->json,
+                  "Print resolved positions (degrees), exposures and coverage as JSON");
+  check->add_option("--svg", check_args->svg, "Write the coverage map (θh × θd) as SVG");
   check->callback([check_args] {
-    const acquire::Plan p = acquire::LoadPlanFile(check_args->second);
+    const acquire::Plan p = acquire::LoadPlanFile(check_args->plan);
     const acquire::PlanCheckReport report =
-        acquire::CheckPlan(p, rig::ReadRigDescription(check_args->first));
-    std::printf("%s", report.ToString().c_str());
+        acquire::CheckPlan(p, rig::ReadRigDescription(check_args->rig));
+    std::printf("%s", check_args->json ? report.ToJson().c_str() : report.ToString().c_str());
+    if (!check_args->svg.empty() && report.has_coverage) {
+      WriteFileAtomically(check_args->svg, coverage::CoverageSvg(
+                                               report.coverage, "coverage of " + check_args->plan));
+    }
     if (!report.ok()) throw Error("the plan cannot run on this rig (errors above)");
   });
 

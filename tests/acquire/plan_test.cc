@@ -106,3 +106,57 @@ exposures: [0.01]
 
 }  // namespace
 }  // namespace brdfrig::acquire
+
+namespace brdfrig::acquire {
+namespace {
+
+TEST(PlanDesignTest, DesignedPlanIsResolvedForTheRigAndExplained) {
+  const auto rig = testing::MakeTestRig(
+      "plan_design", "", "sample: s\npositions: {design: {count: 4, validation: 1}}\n");
+  const Plan plan = LoadPlanFile(rig.plan_file);
+  ASSERT_TRUE(plan.design.has_value());
+  EXPECT_TRUE(plan.positions.empty());  // the rig decides them
+  const geometry::RigDescription description = rig::ReadRigDescription(rig.rig_file);
+  const PlanCheckReport report = CheckPlan(plan, description);
+  ASSERT_TRUE(report.ok()) << report.ToString();
+  ASSERT_EQ(report.resolved.size(), 5u);
+  EXPECT_FALSE(report.resolved[3].validation);
+  EXPECT_TRUE(report.resolved[4].validation);
+  EXPECT_TRUE(report.has_coverage);
+  EXPECT_GT(report.coverage.covered_fraction, 0);
+  // Off-specular positions are intended: no "highlight not on the cut-out" warnings.
+  EXPECT_TRUE(report.warnings.empty()) << report.ToString();
+  const std::string text = report.ToString();
+  EXPECT_NE(text.find("designed plan"), std::string::npos) << text;
+  EXPECT_NE(text.find("covered fraction"), std::string::npos) << text;
+  const std::string json = report.ToJson();
+  EXPECT_NE(json.find("\"axes_deg\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"covered_fraction\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"validation\": true"), std::string::npos) << json;
+  // ResolvePlan gives the positions CheckPlan checked.
+  Plan resolved = plan;
+  ResolvePlan(&resolved, description.geometry);
+  ASSERT_EQ(resolved.positions.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(resolved.positions[i].axes, report.resolved[i].axes);
+    EXPECT_EQ(resolved.positions[i].line, 2);
+  }
+}
+
+TEST(PlanDesignTest, ExplicitValidationPositionsAndDesignErrors) {
+  const Plan plan = LoadPlanString(
+      "sample: s\npositions:\n  - {camera_arm: 20, light_arm: -20}\n"
+      "  - {camera_arm: 30, light_arm: -10, validation: true}\n",
+      "plan.yaml");
+  ASSERT_EQ(plan.positions.size(), 2u);
+  EXPECT_FALSE(plan.positions[0].validation);
+  EXPECT_TRUE(plan.positions[1].validation);
+  EXPECT_EQ(plan.positions[1].axes.count("validation"), 0u);
+  EXPECT_NE(ErrorOf("sample: s\npositions: {design: {count: 30}}\n").find("plan.yaml:2:"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("sample: s\npositions: {design: {cout: 3}}\n").find("plan.yaml:2:"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace brdfrig::acquire

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "brdf/material_file.h"
+#include "coverage/designer.h"
 
 #include "sim/scene.h"
 #include "test_scene.h"
@@ -36,24 +37,33 @@ std::string ErrorOf(const std::string& extra) {
 
 std::string At(int extra_line) { return "scene.yaml:" + std::to_string(BaseLines() + extra_line); }
 
-TEST(SceneTest, DefaultSceneLoadsWithSixHighlightPositions) {
+TEST(SceneTest, DefaultSceneLoadsWithSixDesignedPositions) {
   const Scene scene = LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml");
   EXPECT_EQ(scene.rig.intrinsics.width, 1600);
   EXPECT_EQ(scene.rig.intrinsics.height, 1200);
   ASSERT_EQ(scene.capture.positions.size(), 6u);
+  EXPECT_EQ(scene.capture.validation, std::vector<bool>(6, false));
   EXPECT_EQ(scene.capture.exposures.size(), 3u);
   EXPECT_EQ(scene.sample.brdf->Name().substr(0, 3), "ggx");
   EXPECT_TRUE(scene.effects.shot_noise.has_value());
   EXPECT_FALSE(scene.effects.vignetting.has_value());
-  // Each position mirrors camera and light about the normal: the highlight sits at the
-  // cut-out's centre, at incidence angles 15° .. 65°.
-  for (std::size_t i = 0; i < scene.capture.positions.size(); ++i) {
-    const geometry::Vec3 c = scene.rig.CameraAt(scene.capture.positions[i]).CenterInWorld();
-    const geometry::Vec3 l = scene.rig.LightAt(scene.capture.positions[i]);
-    const geometry::Vec3 h = (c.normalized() + l.normalized()).normalized();
-    EXPECT_NEAR(h.z(), 1.0, 1e-9);
-    EXPECT_NEAR(std::acos(l.normalized().z()), (15 + 10 * static_cast<double>(i)) * kDegree, 1e-9);
+  EXPECT_NE(scene.capture.design.find("designed plan"), std::string::npos);
+  // The designed plan (docs/coverage.md): every position within the design's constraints, one
+  // near retro-reflection, one with grazing light, and some off the specular direction.
+  const coverage::DesignOptions options;
+  const coverage::CoverageMap map =
+      coverage::ComputeCoverage(scene.rig, scene.capture.positions, scene.capture.validation);
+  bool retro = false, grazing = false;
+  int off_specular = 0;
+  for (const coverage::PositionCoverage& c : map.positions) {
+    EXPECT_EQ(coverage::CheckDesignConstraints(scene.rig, c.axes, options), "");
+    retro |= c.theta_d_min < 15 * kDegree;
+    grazing |= c.theta_in >= 70 * kDegree;
+    off_specular += c.theta_h_min > 2 * kDegree;
   }
+  EXPECT_TRUE(retro);
+  EXPECT_TRUE(grazing);
+  EXPECT_GE(off_specular, 2);
 }
 
 TEST(SceneTest, EffectsAreParsedWithTheirValues) {
