@@ -81,8 +81,8 @@ CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
     }
     CapturePosition position;
     position.index = index;
-    position.validation = index < static_cast<int>(session.planned_validation.size()) &&
-                          session.planned_validation[static_cast<std::size_t>(index)];
+    position.validation = index < static_cast<int>(contents.planned_validation.size()) &&
+                          contents.planned_validation[static_cast<std::size_t>(index)];
     position.axis_readings = bracket.begin()->second->axis_readings;
     for (const auto& [bracket_index, frame] : bracket) {
       position.frames.push_back({frame->file, frame->exposure_s});

@@ -5,11 +5,11 @@
 #include <set>
 
 #include "acquire/capture.h"
-#include "session/session_reader.h"
 #include "brdf/material_file.h"
 #include "common/atomic_file.h"
 #include "coverage/coverage.h"
 #include "reconstruct/pipeline.h"
+#include "session/session_reader.h"
 #include "sim/devices.h"
 #include "sim/scene.h"
 #include "sim/simulator.h"
@@ -135,8 +135,8 @@ TEST(ValidationTest, SessionRecordsTheRoleAndTheCaptureSetCarriesIt) {
   options.plan_file = dir / "plan.yaml";
   options.output_dir = dir / "session";
   ASSERT_EQ(acquire::RunCapture(options).run.status, acquire::ExitStatus::kSuccess);
-  const acquire::SessionContents session = acquire::ReadSession(dir / "session");
-  EXPECT_EQ(session.planned_validation, (std::vector<bool>{false, true}));
+  const session::SessionContents contents = session::ReadSession(dir / "session");
+  EXPECT_EQ(contents.planned_validation, (std::vector<bool>{false, true}));
   const CaptureSet capture = LoadSessionCapture(dir / "session");
   ASSERT_EQ(capture.positions.size(), 2u);
   EXPECT_FALSE(capture.positions[0].validation);
