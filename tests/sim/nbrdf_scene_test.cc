@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 
@@ -55,14 +57,15 @@ TEST(NbrdfSceneTest, ASampleNamedByMaterialRendersItsBrdf) {
   // material's BRDF times the irradiance there.
   const TrueGeometry g = simulator.GeometryAt(p);
   const cv::Point2d centre(160, 120);
-  const geometry::Vec3 ray = geometry::PixelRayInWorld(g.intrinsics, g.camera, {centre.x, centre.y});
+  const geometry::Vec3 ray =
+      geometry::PixelRayInWorld(g.intrinsics, g.camera, {centre.x, centre.y});
   const geometry::Vec3 origin = g.camera.CenterInWorld();
   const geometry::Vec3 x = origin - ray * (origin.z() / ray.z());
   ASSERT_LT(x.head<2>().norm(), 0.03);
   const geometry::Vec3 to_light = g.light_position - x;
   const geometry::Vec3 l = to_light.normalized(), v = (origin - x).normalized();
-  const brdf::Rgb expected = scene.sample.brdf->Eval(l, v, geometry::Vec3::UnitZ()) * g.light_intensity *
-                             l.z() / to_light.squaredNorm();
+  const brdf::Rgb expected = scene.sample.brdf->Eval(l, v, geometry::Vec3::UnitZ()) *
+                             g.light_intensity * l.z() / to_light.squaredNorm();
   const cv::Vec3f got = radiance.at<cv::Vec3f>(120, 160);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[2 - c], expected[c], 1e-4 * expected[c]) << c;
 }
@@ -77,8 +80,12 @@ TEST(NbrdfSceneTest, ASampleCanNameAnNbrdfFile) {
 
 TEST(NbrdfSceneTest, MistakesAreReportedWithTheSceneLine) {
   using ::testing::HasSubstr;
+  // The error points at the sample's line of the default scene, wherever that is.
+  const std::string text = DefaultSceneWith("{model: nbrdf, name: gold-paint}");
+  const auto line =
+      1 + std::count(text.begin(), text.begin() + text.find("name: gold-paint"), '\n');
   EXPECT_THAT(SceneError("{model: nbrdf, name: gold-paint}"),
-              HasSubstr("scene.yaml:36:"));  // the sample's line in the default scene
+              HasSubstr("scene.yaml:" + std::to_string(line) + ":"));
   EXPECT_THAT(SceneError("{model: nbrdf, name: gold-paint}"), HasSubstr("gold-metallic-paint"));
   EXPECT_THAT(SceneError("{model: nbrdf}"), HasSubstr("either 'name'"));
   EXPECT_THAT(SceneError("{model: nbrdf, name: brass, file: x.json}"), HasSubstr("not both"));
