@@ -32,6 +32,9 @@ std::string StudyScene(std::string text, const StudySettings& s) {
     replace("resolution: \\[[0-9]+, *[0-9]+\\]",
             "resolution: [" + std::to_string(s.width) + ", " + std::to_string(s.height) + "]");
   }
+  if (s.supersampling != 0) {
+    replace("supersampling: [0-9]+", "supersampling: " + std::to_string(s.supersampling));
+  }
   if (!s.sample_brdf.empty()) replace("brdf: \\{[^\n]*\\}", "brdf: " + s.sample_brdf);
   if (!s.sensor_format.empty()) replace("format: [a-z0-9]+", "format: " + s.sensor_format);
   if (!s.effects.empty()) {
@@ -64,8 +67,11 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     simulate.output_dir = s.work_dir / "capture";
     simulate.write_truth = false;
     simulate.exposures = s.exposures;
-    for (double theta : s.position_degrees) {
-      simulate.positions.push_back({{"camera_arm", theta * kDeg}, {"light_arm", -theta * kDeg}});
+    simulate.positions = s.positions;
+    if (s.positions.empty()) {
+      for (double theta : s.position_degrees) {
+        simulate.positions.push_back({{"camera_arm", theta * kDeg}, {"light_arm", -theta * kDeg}});
+      }
     }
     result.capture_time_s = sim::Simulate(simulate).virtual_time_s;
     const sim::Scene scene = sim::LoadScene(scene_file);
@@ -81,6 +87,19 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     result.slices = static_cast<int>(fit.material.slices.size());
     result.warnings = fit.warnings;
     const brdf::SliceModel model = fit.material.Model();
+    if (s.judge) {
+      JudgeOptions judge = *s.judge;
+      judge.held_out.linear_interpolation = s.linear_interpolation;
+      result.figures = JudgeFit(scene, model, judge);
+      result.brdf_error = result.figures.brdf.log_cosine_error;
+      result.views = result.figures.held_out;
+      for (const HeldOutResult& v : result.views) {
+        result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
+        result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
+      }
+      fs::remove_all(s.work_dir);
+      return result;
+    }
     result.brdf_error = brdf::LogCosineError(*scene.sample.brdf, model);
 
     std::vector<double> phis;

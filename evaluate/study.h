@@ -4,18 +4,25 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "evaluate/held_out.h"
+#include "evaluate/material_report.h"
+#include "rig/geometry.h"
 
 namespace brdfrig::evaluate {
 
 struct StudySettings {
   std::filesystem::path scene;           // base scene (default: sim/scenes/default.yaml)
   std::vector<double> position_degrees;  // symmetric arms: camera_arm = θ, light_arm = −θ
-  std::vector<double> exposures;         // empty: the scene's
-  int width = 0, height = 0;             // 0: the scene's resolution
+  // An explicit plan (axis values in radians); when given it replaces position_degrees, so a
+  // designed plan plugs in as its list of positions.
+  std::vector<rig::AxisPositions> positions;
+  std::vector<double> exposures;  // empty: the scene's
+  int width = 0, height = 0;      // 0: the scene's resolution
+  int supersampling = 0;          // 0: the scene's render.supersampling
   // Replacements for the base scene's lines (YAML flow text; empty: keep the scene's):
   std::string sample_brdf;      // e.g. "{model: ward, alpha: 0.15, specular: 0.3, diffuse: 0.1}"
   std::string sensor_format;    // png16 | jpeg8 | tiff16
@@ -26,10 +33,14 @@ struct StudySettings {
   double view_elevation_deg = 40;
   std::vector<double> view_phis_deg = {0, 30, 60, 90, 120, 150, 180};
   std::filesystem::path work_dir;  // scratch (the simulated capture)
+  // When set, the fit is judged with every figure (held-out views at every elevation, sphere
+  // test, BRDF figures) into StudyResult::figures instead of the single-elevation views above.
+  std::optional<JudgeOptions> judge;
 };
 
 struct StudyResult {
   std::vector<HeldOutResult> views;
+  MaterialFigures figures;  // with StudySettings::judge (its held_out are also in `views`)
   double mean_psnr_whole = 0, mean_psnr_sample = 0;  // dB, averaged over views
   double brdf_error = 0;          // brdf::LogCosineError against the scene's sample
   double capture_time_s = 0;      // the rig's virtual clock: moves + exposures + downloads
