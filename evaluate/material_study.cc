@@ -192,11 +192,11 @@ std::string MarkdownTable(const std::vector<MaterialStudyRow>& rows, const Study
       elevations.push_back(e.elevation_deg);
     }
   }
-  out << " held-out min (dB) | rel. RMSE | albedo err 0–75° | albedo err 80° | BRDF err | fit (s) "
-         "|\n|---|---|";
+  out << " held-out min (dB) | rel. RMSE | albedo err 0–75° | albedo err 80° | BRDF err | slices | "
+         "fit (s) |\n|---|---|";
   const std::size_t extra =
       first ? first->result.figures.sphere.lights.size() + elevations.size() : 0;
-  for (std::size_t i = 0; i < extra + 6; ++i) out << "---|";
+  for (std::size_t i = 0; i < extra + 7; ++i) out << "---|";
   out << "\n";
   for (const MaterialStudyRow& r : rows) {
     out << "| " << r.material.name << " |";
@@ -215,8 +215,8 @@ std::string MarkdownTable(const std::vector<MaterialStudyRow>& rows, const Study
     const double albedo_80 = f.brdf.albedo.empty() ? NAN : f.brdf.albedo.back().relative_error;
     out << " " << Fixed(r.held_out_min_db, 1) << " | " << Fixed(rmse, 3) << " | "
         << Fixed(r.albedo_error_0_75, 3) << " | " << Fixed(albedo_80, 3) << " | "
-        << Fixed(r.result.brdf_error, 3) << " | " << Fixed(r.result.reconstruct_time_s, 2)
-        << " |\n";
+        << Fixed(r.result.brdf_error, 3) << " | " << r.result.slices << " | "
+        << Fixed(r.result.reconstruct_time_s, 2) << " |\n";
   }
   const MaterialStudySummary s = Summarize(rows);
   out << "\nMean over " << s.materials - s.failed << " materials: sphere "
