@@ -1,11 +1,14 @@
 #include "evaluate/held_out.h"
 
+#include <algorithm>
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "common/angles.h"
 #include "common/error.h"
 #include "common/option_check.h"
+#include "evaluate/sphere_test.h"
 #include "render/capture_view.h"
 #include "render/gl_context.h"
 #include "sim/simulator.h"
@@ -39,7 +42,62 @@ std::string Protocol(const char* region, int bits) {
   return out.str();
 }
 
+// The exposure-independent figures over the sample pixels (linear radiance, B,G,R float).
+void NormalizedFigures(const cv::Mat& truth, const cv::Mat& fit, const cv::Mat& mask,
+                       HeldOutResult* r) {
+  std::vector<float> values;
+  for (int y = 0; y < truth.rows; ++y) {
+    const float* p = truth.ptr<float>(y);
+    const uchar* m = mask.ptr<uchar>(y);
+    for (int x = 0; x < truth.cols; ++x) {
+      if (m[x]) values.insert(values.end(), p + 3 * x, p + 3 * x + 3);
+    }
+  }
+  if (values.empty()) throw Error("held-out: the cut-out is not in view");
+  const std::size_t rank = std::min(values.size() - 1, values.size() * 99 / 100);
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank),
+                   values.end());
+  double peak = values[rank];
+  if (!(peak > 0)) peak = 1;  // a black sample: any scale keeps the figures defined
+  cv::Mat a(truth.size(), CV_32FC3), b(truth.size(), CV_32FC3);
+  double se = 0, sq = 0;
+  for (int y = 0; y < truth.rows; ++y) {
+    const float* pt = truth.ptr<float>(y);
+    const float* pf = fit.ptr<float>(y);
+    const uchar* m = mask.ptr<uchar>(y);
+    float* pa = a.ptr<float>(y);
+    float* pb = b.ptr<float>(y);
+    for (int i = 0; i < truth.cols * 3; ++i) {
+      const double ft = std::isnan(pf[i]) ? 1e30 : pf[i];
+      pa[i] = static_cast<float>(SrgbEncode(std::clamp(pt[i] / peak, 0.0, 1.0)));
+      pb[i] = static_cast<float>(SrgbEncode(std::clamp(ft / peak, 0.0, 1.0)));
+      if (m[i / 3]) {
+        se += (ft - pt[i]) * (ft - pt[i]);
+        sq += static_cast<double>(pt[i]) * pt[i];
+      }
+    }
+  }
+  r->normalized_sample =
+      Psnr(a, b, mask, 1.0,
+           "sample only, linear radiance / truth's 99th percentile in the view, clamped, sRGB");
+  r->relative_rmse = sq > 0 ? std::sqrt(se / sq) : std::sqrt(se);
+  r->relative_rmse_protocol =
+      "sample only, linear radiance, RMS(fit - truth) / RMS(truth), unclamped";
+}
+
 }  // namespace
+
+std::vector<HeldOutView> ElevationViews(const std::vector<double>& elevations,
+                                        const std::vector<double>& phis) {
+  std::vector<HeldOutView> views;
+  for (double elevation : elevations) {
+    for (HeldOutView v : OrientationViews(elevation, phis)) {
+      v.name = "el=" + std::to_string(std::lround(elevation * 180 / M_PI)) + "deg " + v.name;
+      views.push_back(std::move(v));
+    }
+  }
+  return views;
+}
 
 std::vector<HeldOutView> OrientationViews(double elevation, const std::vector<double>& phis) {
   std::vector<HeldOutView> views;
@@ -49,6 +107,7 @@ std::vector<HeldOutView> OrientationViews(double elevation, const std::vector<do
     views.push_back(
         {name.str(),
          phi,
+         elevation,
          {{"camera_arm", elevation}, {"light_arm", -elevation}, {"light_azimuth", phi}}});
   }
   return views;
@@ -87,7 +146,8 @@ std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::
     HeldOutResult r;
     r.view = view;
     const sim::TrueGeometry g = truth.GeometryAt(view.positions);
-    cv::Mat photo = truth.RenderCameraImage(view.positions, exposure, options.frame);
+    const cv::Mat true_radiance = truth.RenderRadiance(view.positions);
+    cv::Mat photo = truth.Expose(true_radiance, exposure, options.frame);
     render::CaptureView capture;
     capture.target = scene.rig.target;
     capture.background_albedo = scene.background_albedo;
@@ -95,14 +155,15 @@ std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::
     capture.light = {g.light_position, brdf::Rgb::Constant(g.light_intensity)};
     capture.supersampling = scene.render.supersampling;
     capture.linear_interpolation = options.linear_interpolation;
-    cv::Mat rendering =
-        sensor.Expose(render::RenderCaptureView(capture, fitted), exposure, options.frame);
+    const cv::Mat fitted_radiance = render::RenderCaptureView(capture, fitted);
+    cv::Mat rendering = sensor.Expose(fitted_radiance, exposure, options.frame);
     // Code values as the photo file holds them: clamp to the sensor's range.
     cv::min(cv::max(photo, 0.0), 1.0, photo);
     cv::min(cv::max(rendering, 0.0), 1.0, rendering);
     r.whole_photo = Psnr(photo, rendering, cv::Mat(), 1.0, Protocol("whole photo", bits));
-    r.sample_only = Psnr(photo, rendering, SampleMask(g, scene.rig.target, 2), 1.0,
-                         Protocol("sample only", bits));
+    const cv::Mat mask = SampleMask(g, scene.rig.target, 2);
+    r.sample_only = Psnr(photo, rendering, mask, 1.0, Protocol("sample only", bits));
+    NormalizedFigures(true_radiance, fitted_radiance, mask, &r);
     if (options.keep_images) {
       r.photo = photo;
       r.rendering = rendering;

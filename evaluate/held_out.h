@@ -4,6 +4,12 @@
 //                  values, peak = full scale: how the seed compared a real and a synthesized photo;
 //   sample only  — the pixels inside the cut-out (2 px margin), same units: the honest figure for
 //                  the material, far lower because the paper is easy to get right.
+// Beside them the exposure-independent figures of the sample pixels, computed on linear radiance
+// (the simulator's noise-free radiance of the truth against the rendering of the fit), so a dark
+// view cannot score high whatever the error:
+//   normalized sample PSNR — both divided by the truth's 99th percentile over the view's sample
+//                  pixels (channels pooled), clamped to [0, 1], sRGB-encoded, peak 1;
+//   relative RMSE — sqrt(mean (fit − truth)²) / sqrt(mean truth²) over the sample pixels.
 #pragma once
 
 #include <string>
@@ -18,7 +24,8 @@ namespace brdfrig::evaluate {
 
 struct HeldOutView {
   std::string name;
-  double phi = 0;  // light azimuth out of the camera's plane of incidence (radians)
+  double phi = 0;        // light azimuth out of the camera's plane of incidence (radians)
+  double elevation = 0;  // camera and light angle from the sample normal (radians)
   geometry::AxisPositions positions;
 };
 
@@ -27,10 +34,17 @@ struct HeldOutView {
 // light_azimuth (sim/scenes/default.yaml has them).
 std::vector<HeldOutView> OrientationViews(double elevation, const std::vector<double>& phis);
 
+// OrientationViews at every elevation (radians), elevation-major; names say both angles.
+std::vector<HeldOutView> ElevationViews(const std::vector<double>& elevations,
+                                        const std::vector<double>& phis);
+
 struct HeldOutResult {
   HeldOutView view;
   PsnrResult whole_photo;
   PsnrResult sample_only;
+  PsnrResult normalized_sample;  // exposure independent (see above)
+  double relative_rmse = 0;      // sample pixels, linear radiance
+  std::string relative_rmse_protocol;
   cv::Mat photo, rendering;  // sensor images (CV_32FC3, B,G,R, 1 = full scale) for reports
 };
 

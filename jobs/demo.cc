@@ -10,6 +10,7 @@
 #include "evaluate/held_out.h"
 #include "evaluate/material_report.h"
 #include "evaluate/report.h"
+#include "evaluate/report_json.h"
 #include "reconstruct/batch.h"
 #include "sim/devices.h"
 #include "sim/scene.h"
@@ -58,9 +59,10 @@ std::string PlanYaml(const sim::Scene& scene) {
 void DemoOptions::Validate() const {
   if (output_dir.empty()) throw OptionsError("demo: no output directory given");
   if (view_phis_deg.empty()) throw OptionsError("demo: no held-out views");
-  if (!(view_elevation_deg > 0 && view_elevation_deg < 85)) {
-    throw OptionsError("demo: view elevation must be in (0, 85) degrees");
-  }
+  evaluate::JudgeOptions judge;
+  judge.view_elevations_deg = view_elevations_deg;
+  judge.view_phis_deg = view_phis_deg;
+  judge.Validate();
 }
 
 DemoSummary RunDemo(const DemoOptions& options_in) {
@@ -115,21 +117,20 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   const std::shared_ptr<const brdf::Brdf> fitted_model = result.material.Model();
   const brdf::Brdf& fitted = *fitted_model;
 
-  // 3. Held-out views: render the fit, photograph the truth.
-  say("[3/4] rendering " + std::to_string(options.view_phis_deg.size()) + " held-out views");
+  // 3. Held-out views at every elevation, the sphere test and the BRDF-space figures.
+  say("[3/4] judging the fit: " +
+      std::to_string(options.view_elevations_deg.size() * options.view_phis_deg.size()) +
+      " held-out views, sphere test, BRDF error");
   start = std::chrono::steady_clock::now();
-  std::vector<double> phis;
-  for (double d : options.view_phis_deg) phis.push_back(Radians(d));
-  evaluate::HeldOutOptions held_out_options;
-  held_out_options.keep_images = true;
-  const std::vector<evaluate::HeldOutResult> views = evaluate::EvaluateHeldOut(
-      scene, fitted, evaluate::OrientationViews(Radians(options.view_elevation_deg), phis),
-      held_out_options);
+  evaluate::JudgeOptions judge;
+  judge.view_elevations_deg = options.view_elevations_deg;
+  judge.view_phis_deg = options.view_phis_deg;
+  judge.held_out.keep_images = true;
+  judge.sphere.keep_images = true;
+  const evaluate::MaterialFigures figures = evaluate::JudgeFit(scene, fitted, judge);
   const double evaluate_s = SecondsSince(start);
 
-  // 4. BRDF-space error and energy.
-  say("[4/4] BRDF error and report");
-
+  say("[4/4] report");
   evaluate::Report report;
   report.title = "brdfrig demo: " + scene.Summary();
   evaluate::ReportSection overview{"Overview", {}, {}, {}, {}};
@@ -139,11 +140,12 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
       " positions; the rig's clock says " + Fixed(captured.run.timing.session_s, 1) + " s, " +
       Fixed(captured.run.timing.Ratio(), 3) +
       "× the unavoidable moves, exposures and downloads), reconstructed into the seed's slice "
-      "model, then compared with photos of views not used for the fit (the light turned by phi "
-      "about the sample normal).");
+      "model, then compared with photos of views not used for the fit (camera and light at "
+      "several elevations, the light turned by phi about the sample normal), on a sphere under "
+      "lights from 0° to 80° and in BRDF space.");
   overview.tables.push_back(
       {"Wall time per step (s)",
-       {"capture (simulated devices)", "reconstruction", "held-out evaluation"},
+       {"capture (simulated devices)", "reconstruction", "evaluation"},
        {{Fixed(capture_s, 1), Fixed(reconstruct_s, 1), Fixed(evaluate_s, 1)}}});
   report.sections.push_back(overview);
 
@@ -187,14 +189,20 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   for (const auto& w : result.warnings) recon.paragraphs.push_back("warning: " + w);
   report.sections.push_back(recon);
 
-  report.sections.push_back(evaluate::HeldOutSection(views, options.view_elevation_deg, out));
-  report.sections.push_back(evaluate::BrdfSection(*scene.sample.brdf, fitted));
-
-  report.WriteHtml(out);
+  nlohmann::json json = evaluate::NewReportJson(report.title);
+  for (const evaluate::ReportSection& section : report.sections) {
+    json["sections"].push_back(evaluate::SectionJson(section));
+  }
+  json["timing_s"] = {{"capture", capture_s},
+                      {"reconstruction", reconstruct_s},
+                      {"evaluation", evaluate_s},
+                      {"rig_clock", captured.run.timing.session_s}};
+  json["figures"] = evaluate::FiguresJson(figures, out);
+  const evaluate::WrittenReport written = evaluate::WriteReport(out, json);
   DemoSummary summary;
-  summary.text = report.Text();
-  WriteFileAtomically(out / "report.txt", summary.text);
-  summary.report_html = out / "report.html";
+  summary.text = written.text;
+  summary.report_html = written.html;
+  summary.report_json = written.json;
   return summary;
 }
 

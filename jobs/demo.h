@@ -13,14 +13,15 @@ namespace brdfrig::jobs {
 struct DemoOptions {
   std::filesystem::path scene;       // default: the built-in sim/scenes/default.yaml
   std::filesystem::path output_dir;  // the report directory
-  double view_elevation_deg = 40;    // held-out views: camera and light at this elevation,
-  std::vector<double> view_phis_deg = {0, 20, 45, 90, 135, 180};  // light turned by phi
+  // Held-out views: camera and light at each elevation, the light turned by each phi.
+  std::vector<double> view_elevations_deg = {20, 40, 60, 75};
+  std::vector<double> view_phis_deg = {0, 45, 90, 180};
   std::function<void(const std::string&)> progress;
   void Validate() const;
 };
 
 struct DemoSummary {
-  std::filesystem::path report_html;
+  std::filesystem::path report_html, report_json;
   std::string text;  // the plain-text report
 };
 

@@ -1,6 +1,8 @@
-// `brdfrig evaluate`: a fitted material against a simulated scene's truth — held-out views
-// (light turned by phi about the normal, PSNR whole-photo and sample-only) and the BRDF-space
-// error — written as a report directory (report.html, report.txt, views/).
+// `brdfrig evaluate`: a fitted material against a simulated scene's truth — held-out views at
+// several elevations (light turned by phi about the normal; PSNR whole photo, sample only and
+// normalized, relative RMSE), the sphere test and the BRDF-space figures — written as a report
+// directory (report.json with every figure, report.html and report.txt from it, views/,
+// spheres/).
 #pragma once
 
 #include <filesystem>
@@ -14,15 +16,15 @@ struct EvaluateOptions {
   std::filesystem::path material;    // material.json to judge
   std::filesystem::path scene;       // the scene whose sample is the truth
   std::filesystem::path output_dir;  // the report directory
-  double view_elevation_deg = 40;
-  std::vector<double> view_phis_deg = {0, 20, 45, 90, 135, 180};
+  std::vector<double> view_elevations_deg = {20, 40, 60, 75};
+  std::vector<double> view_phis_deg = {0, 45, 90, 180};
   bool linear_interpolation = false;  // render the slice model as the seed did
   std::function<void(const std::string&)> progress;
   void Validate() const;
 };
 
 struct EvaluateSummary {
-  std::filesystem::path report_html;
+  std::filesystem::path report_html, report_json;
   std::string text;
 };
 

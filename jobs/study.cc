@@ -38,6 +38,7 @@ sim::Scene StudyScene(const fs::path& base, const StudySettings& s) {
     k.width = s.width;
     k.height = s.height;
   }
+  if (s.supersampling != 0) scene.render.supersampling = s.supersampling;
   if (!s.sample_brdf.empty()) {
     const YamlNode root = LoadYamlString("brdf: " + s.sample_brdf, "StudySettings.sample_brdf");
     scene.sample.brdf = sim::ParseSampleBrdf(root.Required("brdf"), base.parent_path());
@@ -100,8 +101,12 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   simulate.output_dir = scratch.path() / "capture";
   simulate.write_truth = false;
   simulate.exposures = s.exposures;
-  for (double theta : s.position_degrees) {
-    simulate.positions.push_back({{"camera_arm", Radians(theta)}, {"light_arm", -Radians(theta)}});
+  simulate.positions = s.positions;
+  if (s.positions.empty()) {
+    for (double theta : s.position_degrees) {
+      simulate.positions.push_back(
+          {{"camera_arm", Radians(theta)}, {"light_arm", -Radians(theta)}});
+    }
   }
   result.capture_time_s = sim::Simulate(simulate).virtual_time_s;
 
@@ -109,6 +114,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   reconstruct::ReconstructOptions options;
   options.samples.bin_width = Radians(s.bin_width_deg);
   options.fit.max_iterations = s.fit_iterations;
+  options.model = s.model;
   // capture.json names the base scene; the nominal geometry is the edited scene's.
   reconstruct::CaptureSet capture = reconstruct::LoadCapture(scratch.path() / "capture");
   capture.nominal = scene->rig;
@@ -117,8 +123,23 @@ StudyResult RunStudyPoint(const StudySettings& s) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.slices = static_cast<int>(fit.material.slices.size());
   result.warnings = fit.warnings;
+  result.material = fit.material;
+  result.positions_used = 0;
+  for (const reconstruct::PositionReport& p : fit.positions) result.positions_used += p.used;
   const std::shared_ptr<const brdf::Brdf> fitted_model = fit.material.Model();
   const brdf::Brdf& model = *fitted_model;
+  if (s.judge) {
+    evaluate::JudgeOptions judge = *s.judge;
+    judge.held_out.linear_interpolation = s.linear_interpolation;
+    result.figures = evaluate::JudgeFit(*scene, model, judge);
+    result.brdf_error = result.figures.brdf.log_cosine_error;
+    result.views = result.figures.held_out;
+    for (const evaluate::HeldOutResult& v : result.views) {
+      result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
+      result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
+    }
+    return result;
+  }
   result.brdf_error = brdf::LogCosineError(*scene->sample.brdf, model);
 
   std::vector<double> phis;

@@ -4,19 +4,28 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "brdf/material_file.h"
 #include "evaluate/held_out.h"
+#include "evaluate/material_report.h"
+#include "geometry/rig_geometry.h"
 
 namespace brdfrig::jobs {
 
 struct StudySettings {
   std::filesystem::path scene;           // base scene (default: sim/scenes/default.yaml)
   std::vector<double> position_degrees;  // symmetric arms: camera_arm = θ, light_arm = −θ
-  std::vector<double> exposures;         // empty: the scene's
-  int width = 0, height = 0;             // 0: the scene's resolution
+  // An explicit plan (axis values in radians); when given it replaces position_degrees, so a
+  // designed plan plugs in as its list of positions.
+  std::vector<geometry::AxisPositions> positions;
+  std::vector<double> exposures;  // empty: the scene's
+  int width = 0, height = 0;      // 0: the scene's resolution
+  int supersampling = 0;          // 0: the scene's render.supersampling
   // Changes to the loaded base scene (YAML flow text; empty: keep the scene's):
+  std::string model;            // ladder rung to force (empty: chosen by validation)
   std::string sample_brdf;      // e.g. "{model: ward, alpha: 0.15, specular: 0.3, diffuse: 0.1}"
   std::string sensor_format;    // png16 | jpeg8 | tiff16
   std::string effects;          // e.g. "[{type: shot_noise, full_well: 30000}]"
@@ -28,15 +37,22 @@ struct StudySettings {
   // Scratch space: the study makes a fresh directory inside it (creating work_dir when missing)
   // and removes only what it made.
   std::filesystem::path work_dir;
+  // When set, the fit is judged with every figure (held-out views at every elevation, sphere
+  // test, BRDF figures) into StudyResult::figures instead of the single-elevation views above.
+  std::optional<evaluate::JudgeOptions> judge;
 };
 
 struct StudyResult {
   std::vector<evaluate::HeldOutResult> views;
+  evaluate::MaterialFigures
+      figures;  // with StudySettings::judge (its held_out are also in `views`)
   double mean_psnr_whole = 0, mean_psnr_sample = 0;  // dB, averaged over views
   double brdf_error = 0;          // brdf::LogCosineError against the scene's sample
   double capture_time_s = 0;      // the rig's virtual clock: moves + exposures + downloads
   double reconstruct_time_s = 0;  // wall time of the reconstruction
   int slices = 0;
+  int positions_used = 0;   // positions measured (target found, photos usable)
+  brdf::Material material;  // the fit: its kind and every rung's validation scores (ladder)
   std::vector<std::string> warnings;
 };
 

@@ -127,11 +127,14 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   }
   nlohmann::json positions_json = nlohmann::json::array();
   for (const PositionReport& r : result.positions) {
-    nlohmann::json p = {{"index", r.index}, {"used", r.used}};
+    const bool validation =
+        Contains(options.validation_positions, r.index) ||
+        std::any_of(result.validation.begin(), result.validation.end(),
+                    [&](const CapturePosition& v) { return v.index == r.index; });
+    nlohmann::json p = {{"index", r.index}, {"used", r.used}, {"validation", validation}};
     if (!r.used) {
       p["skipped"] = r.skipped_reason;
     } else {
-      p["validation"] = Contains(options.validation_positions, r.index);
       p["reprojection_rms_px"] = r.reprojection_rms_px;
       p["light_from_highlight"] = r.light.from_highlight;
       p["light_vs_nominal_deg"] = Degrees(r.light.nominal_disagreement_rad);

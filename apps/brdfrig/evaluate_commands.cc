@@ -18,8 +18,8 @@ struct DemoArgs {
 
 struct EvaluateArgs {
   std::string material, scene, output = "evaluate-out";
-  double elevation_deg = 40;
-  std::vector<double> phis_deg = {0, 20, 45, 90, 135, 180};
+  std::vector<double> elevations_deg = {20, 40, 60, 75};
+  std::vector<double> phis_deg = {0, 45, 90, 180};
   bool linear = false;
 };
 
@@ -48,7 +48,9 @@ void RegisterEvaluateCommands(CLI::App& app) {
   ev->add_option("material", eval->material, "material.json to evaluate")->required();
   ev->add_option("--scene", eval->scene, "Scene whose sample is the truth")->required();
   ev->add_option("-o,--output", eval->output, "Report directory");
-  ev->add_option("--elevation", eval->elevation_deg, "Camera and light elevation (degrees)");
+  ev->add_option("--elevation", eval->elevations_deg,
+                 "Camera and light elevations of the held-out views (degrees)")
+      ->delimiter(',');
   ev->add_option("--phi", eval->phis_deg, "Light azimuths of the held-out views (degrees)")
       ->delimiter(',');
   ev->add_flag("--linear", eval->linear, "Render with the seed's linear interpolation");
@@ -57,7 +59,7 @@ void RegisterEvaluateCommands(CLI::App& app) {
     options.material = eval->material;
     options.scene = eval->scene;
     options.output_dir = eval->output;
-    options.view_elevation_deg = eval->elevation_deg;
+    options.view_elevations_deg = eval->elevations_deg;
     options.view_phis_deg = eval->phis_deg;
     options.linear_interpolation = eval->linear;
     options.progress = Progress;

@@ -34,7 +34,24 @@ TEST(HeldOutTest, TrueMaterialScoresAtTheNoiseFloorAndAWrongOneScoresLower) {
     EXPECT_GT(bad[i].whole_photo.psnr_db, bad[i].sample_only.psnr_db);
     EXPECT_NE(truth[i].whole_photo.protocol.find("whole photo"), std::string::npos);
     EXPECT_NE(truth[i].sample_only.protocol.find("sample only, 14-bit"), std::string::npos);
+    // Exposure independent figures on radiance: the truth is at the rendering's float floor.
+    EXPECT_GT(truth[i].normalized_sample.psnr_db, 40) << truth[i].normalized_sample.Report();
+    EXPECT_LT(truth[i].relative_rmse, 0.02);
+    EXPECT_LT(bad[i].normalized_sample.psnr_db, truth[i].normalized_sample.psnr_db - 10);
+    EXPECT_GT(bad[i].relative_rmse, 0.1);
+    EXPECT_NE(truth[i].normalized_sample.protocol.find("99th percentile"), std::string::npos);
+    EXPECT_NE(truth[i].relative_rmse_protocol.find("linear radiance"), std::string::npos);
   }
+}
+
+TEST(HeldOutTest, ElevationViewsCoverEveryElevationAndAzimuth) {
+  const auto views = ElevationViews({20 * M_PI / 180, 75 * M_PI / 180}, {0.0, M_PI});
+  ASSERT_EQ(views.size(), 4u);
+  EXPECT_EQ(views[3].name, "el=75deg phi=180deg");
+  EXPECT_DOUBLE_EQ(views[3].elevation, 75 * M_PI / 180);
+  EXPECT_DOUBLE_EQ(views[3].positions.at("camera_arm"), 75 * M_PI / 180);
+  EXPECT_DOUBLE_EQ(views[3].positions.at("light_arm"), -75 * M_PI / 180);
+  EXPECT_DOUBLE_EQ(views[3].positions.at("light_azimuth"), M_PI);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/format.h"
+#include "evaluate/material_report.h"
 
 namespace brdfrig::jobs {
 namespace {
@@ -30,14 +32,35 @@ TEST(EvaluateJobTest, WritesAReportWithBothPsnrsAndTheBrdfError) {
   options.material = fs::path(BRDFRIG_SOURCE_DIR) / "tests/data/glossy_slices.json";
   options.scene = SmallScene(dir);
   options.output_dir = dir / "report";
+  options.view_elevations_deg = {40, 75};
   options.view_phis_deg = {0, 90};
   const EvaluateSummary summary = RunEvaluate(options);
   EXPECT_TRUE(fs::exists(summary.report_html));
   EXPECT_TRUE(fs::exists(dir / "report" / "report.txt"));
-  EXPECT_TRUE(fs::exists(dir / "report" / "views" / "phi90_diff.png"));
+  EXPECT_TRUE(fs::exists(dir / "report" / "views" / "el40_phi90_diff.png"));
+  EXPECT_TRUE(fs::exists(dir / "report" / "spheres" / "light80_fit.png"));
   EXPECT_NE(summary.text.find("whole photo"), std::string::npos);
   EXPECT_NE(summary.text.find("sample only"), std::string::npos);
   EXPECT_NE(summary.text.find("Log-cosine error"), std::string::npos);
+  EXPECT_NE(summary.text.find("Sphere test"), std::string::npos);
+  EXPECT_NE(summary.text.find("normalized sample"), std::string::npos);
+  // report.json holds every figure; the text is generated from it.
+  const nlohmann::json report = nlohmann::json::parse(ReadFileToString(summary.report_json));
+  const nlohmann::json& views = report.at("figures").at("held_out").at("views");
+  ASSERT_EQ(views.size(), 4u);
+  EXPECT_DOUBLE_EQ(views[3].at("elevation_deg").get<double>(), 75);
+  EXPECT_DOUBLE_EQ(views[3].at("phi_deg").get<double>(), 90);
+  for (const auto& v : views) {
+    // A slice file fitted to another material: far from the default scene's GGX.
+    EXPECT_LT(evaluate::NumberFromJson(v.at("normalized_sample_psnr_db")), 40) << v.dump();
+    EXPECT_GT(evaluate::NumberFromJson(v.at("relative_rmse")), 0.01) << v.dump();
+  }
+  const nlohmann::json& sphere = report["figures"].at("sphere");
+  EXPECT_EQ(sphere.at("lights").size(), 4u);
+  EXPECT_NE(summary.text.find(Fixed(evaluate::NumberFromJson(sphere["mean_psnr_db"]), 2)),
+            std::string::npos);
+  EXPECT_EQ(report["figures"].at("brdf").at("albedo").size(), 7u);
+  EXPECT_EQ(ReadFileToString(dir / "report" / "report.txt"), summary.text);
 }
 
 TEST(EvaluateJobTest, MalformedMaterialIsAFileErrorNamingIt) {
