@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "brdf/json_reader.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 
@@ -17,37 +18,7 @@ constexpr const char* kLegacyFormat = "brdfrig-slices";  // version 1: slices on
 constexpr const char* kChannelNames[3] = {"red", "green", "blue"};
 constexpr const char* kParamNames[4] = {"A1", "A2", "h", "x0"};
 
-// Reads fields out of a parsed document, naming the JSON path of whatever is wrong.
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-
-  [[noreturn]] void Fail(const std::string& path, const std::string& message) const {
-    throw FileError(source_, (path.empty() ? "" : path + ": ") + message);
-  }
-
-  const json& Field(const json& object, const std::string& path, const char* key) const {
-    if (!object.is_object()) Fail(path, "expected an object");
-    const auto it = object.find(key);
-    if (it == object.end()) Fail(Join(path, key), "missing");
-    return *it;
-  }
-
-  double Number(const json& object, const std::string& path, const char* key) const {
-    const json& value = Field(object, path, key);
-    if (!value.is_number()) Fail(Join(path, key), "expected a number, got " + value.dump());
-    const double x = value.get<double>();
-    if (!std::isfinite(x)) Fail(Join(path, key), "must be finite");
-    return x;
-  }
-
-  static std::string Join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
- private:
-  std::string source_;
-};
+using Reader = JsonReader;
 
 LobeParams ParseLobe(const Reader& r, const json& slice, const std::string& path, int c) {
   const std::string channel_path = Reader::Join(path, kChannelNames[c]);

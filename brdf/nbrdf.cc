@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "brdf/json_reader.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 
@@ -15,64 +16,30 @@ using nlohmann::json;
 constexpr const char* kFormat = "nbrdf-mlp";
 constexpr int kVersion = 1;
 
-// Reads the document, naming the file and the JSON path of whatever is wrong.
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
+using Reader = JsonReader;
 
-  [[noreturn]] void Fail(const std::string& path, const std::string& message) const {
-    throw FileError(source_, (path.empty() ? "" : path + ": ") + message);
+// A vector of exactly `size` finite numbers.
+template <std::size_t N>
+void Vector(const JsonReader& r, const json& value, const std::string& path,
+            std::array<double, N>* out) {
+  if (!value.is_array() || value.size() != N) {
+    r.Fail(path, "expected an array of " + std::to_string(N) + " numbers");
   }
-
-  const json& Field(const json& object, const std::string& path, const char* key) const {
-    if (!object.is_object()) Fail(path, "expected an object");
-    const auto it = object.find(key);
-    if (it == object.end()) Fail(Join(path, key), "missing");
-    return *it;
+  for (std::size_t i = 0; i < N; ++i) {
+    (*out)[i] = r.Number(value[i], path + "[" + std::to_string(i) + "]");
   }
+}
 
-  std::string String(const json& object, const std::string& path, const char* key) const {
-    const json& value = Field(object, path, key);
-    if (!value.is_string()) Fail(Join(path, key), "expected a string, got " + value.dump());
-    return value.get<std::string>();
+// A rows × cols matrix as an array of rows.
+template <std::size_t R, std::size_t C>
+void Matrix(const JsonReader& r, const json& value, const std::string& path,
+            std::array<std::array<double, C>, R>* out) {
+  if (!value.is_array() || value.size() != R) {
+    r.Fail(path, "expected " + std::to_string(R) + " rows of " + std::to_string(C) + " numbers");
   }
-
-  double Number(const json& value, const std::string& path) const {
-    if (!value.is_number()) Fail(path, "expected a number, got " + value.dump());
-    const double x = value.get<double>();
-    if (!std::isfinite(x)) Fail(path, "must be finite");
-    return x;
-  }
-
-  // A vector of exactly `size` finite numbers.
-  template <std::size_t N>
-  void Vector(const json& value, const std::string& path, std::array<double, N>* out) const {
-    if (!value.is_array() || value.size() != N) {
-      Fail(path, "expected an array of " + std::to_string(N) + " numbers");
-    }
-    for (std::size_t i = 0; i < N; ++i) {
-      (*out)[i] = Number(value[i], path + "[" + std::to_string(i) + "]");
-    }
-  }
-
-  // A rows × cols matrix as an array of rows.
-  template <std::size_t R, std::size_t C>
-  void Matrix(const json& value, const std::string& path,
-              std::array<std::array<double, C>, R>* out) const {
-    if (!value.is_array() || value.size() != R) {
-      Fail(path, "expected " + std::to_string(R) + " rows of " + std::to_string(C) + " numbers");
-    }
-    for (std::size_t i = 0; i < R; ++i)
-      Vector(value[i], path + "[" + std::to_string(i) + "]", &(*out)[i]);
-  }
-
-  static std::string Join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
- private:
-  std::string source_;
-};
+  for (std::size_t i = 0; i < R; ++i)
+    Vector(r, value[i], path + "[" + std::to_string(i) + "]", &(*out)[i]);
+}
 
 // One layer's weights, bias and activation, checked against the shapes the network must have.
 template <std::size_t In, std::size_t Out>
@@ -80,8 +47,8 @@ void ParseLayer(const Reader& r, const json& layers, int index, const char* acti
                 std::array<std::array<double, Out>, In>* weights, std::array<double, Out>* bias) {
   const std::string path = "layers[" + std::to_string(index) + "]";
   const json& layer = layers[index];
-  r.Matrix(r.Field(layer, path, "weights"), Reader::Join(path, "weights"), weights);
-  r.Vector(r.Field(layer, path, "bias"), Reader::Join(path, "bias"), bias);
+  Matrix(r, r.Field(layer, path, "weights"), Reader::Join(path, "weights"), weights);
+  Vector(r, r.Field(layer, path, "bias"), Reader::Join(path, "bias"), bias);
   const std::string got = r.String(layer, path, "activation");
   if (got != activation) {
     r.Fail(Reader::Join(path, "activation"),
