@@ -25,6 +25,7 @@ struct TargetOptions {
   double min_log_step = 0.2;       // weakest accepted step, |Δ ln(radiance)| over RGB
   double min_edge_fraction = 0.2;  // fewest collinear steps per edge, fraction of its profiles
   bool use_paper_outline = true;   // the paper's outer edges help when a cut-out edge is weak
+  int lines_per_edge = 3;          // candidate lines kept per edge for the joint choice
   double max_reprojection_px = 2.0;  // a pose worse than this is refused
   // A measured camera this far from the rig's nominal one is used, with a warning: either the
   // rig file is off or the edges were found on badly exposed photos.
