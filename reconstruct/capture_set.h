@@ -20,7 +20,7 @@ struct BracketFrame {
 struct CapturePosition {
   int index = 0;
   geometry::AxisPositions axis_readings;  // as the rig reported them (radians)
-  std::vector<BracketFrame> frames;       // any order; sorted by exposure when merged
+  std::vector<BracketFrame> frames;  // any order; sorted by exposure when merged
   // A validation position of the plan: captured like the rest, never fitted (the result lists
   // it for the comparison of its photos with the fit's rendering).
   bool validation = false;
