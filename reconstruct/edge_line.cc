@@ -5,6 +5,8 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "common/option_check.h"
+
 namespace brdfrig::reconstruct {
 namespace {
 
@@ -119,10 +121,6 @@ void FindSteps(const Profile& profile, const EdgeLineOptions& options,
   }
 }
 
-double Distance(const cv::Vec4d& line, const cv::Point2d& p) {
-  return std::abs((p.x - line[2]) * line[1] - (p.y - line[3]) * line[0]);
-}
-
 // Total least squares line through points.
 cv::Vec4d FitLine(const std::vector<cv::Point2d>& points) {
   cv::Point2d mean(0, 0);
@@ -143,12 +141,83 @@ std::vector<cv::Point2d> Inliers(const std::vector<Candidate>& candidates, const
                                  double tolerance) {
   std::vector<cv::Point2d> inliers;
   for (const Candidate& c : candidates) {
-    if (Distance(line, c.point) <= tolerance) inliers.push_back(c.point);
+    if (LineDistance(line, c.point) <= tolerance) inliers.push_back(c.point);
   }
   return inliers;
 }
 
+// Profiles with a candidate within `tolerance` of the line: a profile counts once however many
+// of its steps lie near the line (the two flanks of a thin dark line are one piece of evidence).
+std::size_t Support(const std::vector<Candidate>& candidates, const cv::Vec4d& line,
+                    double tolerance) {
+  std::size_t n = 0;
+  int last = -1;
+  for (const Candidate& c : candidates) {  // in profile order
+    if (c.profile != last && LineDistance(line, c.point) <= tolerance) {
+      ++n;
+      last = c.profile;
+    }
+  }
+  return n;
+}
+
+// The best-supported line through the candidates close to the nominal direction, refit on its
+// inliers by total least squares; false when none has `needed` supporting profiles.
+bool BestLine(const std::vector<Candidate>& candidates, const Eigen::Vector2d& nominal_direction,
+              std::size_t needed, const EdgeLineOptions& options, EdgeLine* out) {
+  if (candidates.size() < needed) return false;
+  // RANSAC over pairs from different profiles, seeded: the same image gives the same line.
+  std::mt19937 rng(12345);
+  std::uniform_int_distribution<std::size_t> pick(0, candidates.size() - 1);
+  const double min_cos = std::cos(options.max_angle_rad);
+  std::size_t best_count = 0;
+  cv::Vec4d best;
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    const Candidate& p = candidates[pick(rng)];
+    const Candidate& q = candidates[pick(rng)];
+    if (p.profile == q.profile) continue;
+    const cv::Point2d d = q.point - p.point;
+    const double length = cv::norm(d);
+    if (length < 1e-9) continue;
+    if (std::abs(d.x * nominal_direction.x() + d.y * nominal_direction.y()) / length < min_cos) {
+      continue;
+    }
+    const cv::Vec4d line(d.x / length, d.y / length, p.point.x, p.point.y);
+    const std::size_t n = Support(candidates, line, options.inlier_px);
+    if (n > best_count) {
+      best_count = n;
+      best = line;
+    }
+  }
+  if (best_count < needed) return false;
+  // Refit on the inliers, then once more on the refit's inliers.
+  std::vector<cv::Point2d> inliers = Inliers(candidates, best, options.inlier_px);
+  cv::Vec4d line = best;
+  for (int pass = 0; pass < 2 && inliers.size() >= 2; ++pass) {
+    line = FitLine(inliers);
+    inliers = Inliers(candidates, line, options.inlier_px);
+  }
+  if (inliers.size() < 2 || Support(candidates, line, options.inlier_px) < needed) return false;
+  out->line = FitLine(inliers);
+  double sum_sq = 0;
+  for (const auto& p : inliers) sum_sq += std::pow(LineDistance(out->line, p), 2);
+  out->inliers = static_cast<int>(Support(candidates, out->line, options.inlier_px));
+  out->rms_px = std::sqrt(sum_sq / static_cast<double>(inliers.size()));
+  return true;
+}
+
 }  // namespace
+
+void EdgeLineOptions::Validate() const {
+  CheckOption(search_band_m > 0, "EdgeLineOptions.search_band_m", search_band_m, "> 0");
+  CheckOption(max_candidates >= 1, "EdgeLineOptions.max_candidates", max_candidates, ">= 1");
+  CheckOption(inlier_px > 0, "EdgeLineOptions.inlier_px", inlier_px, "> 0");
+  CheckOption(max_lines >= 1, "EdgeLineOptions.max_lines", max_lines, ">= 1");
+}
+
+double LineDistance(const cv::Vec4d& line, const cv::Point2d& p) {
+  return std::abs((p.x - line[2]) * line[1] - (p.y - line[3]) * line[0]);
+}
 
 EdgeImage MakeEdgeImage(const cv::Mat& radiance) {
   EdgeImage image;
@@ -163,10 +232,11 @@ EdgeImage MakeEdgeImage(const cv::Mat& radiance) {
   return image;
 }
 
-EdgeLine FindEdgeLine(const EdgeImage& image, const geometry::Intrinsics& intrinsics,
-                      const geometry::CameraPose& nominal, const geometry::Vec3& a,
-                      const geometry::Vec3& b, const EdgeLineOptions& options) {
-  EdgeLine result;
+EdgeLines FindEdgeLines(const EdgeImage& image, const geometry::Intrinsics& intrinsics,
+                        const geometry::CameraPose& nominal, const geometry::Vec3& a,
+                        const geometry::Vec3& b, const EdgeLineOptions& options) {
+  options.Validate();
+  EdgeLines result;
   geometry::Intrinsics undistorted = intrinsics;
   undistorted.k1 = undistorted.k2 = 0;
   Eigen::Vector2d pa, pb;
@@ -203,49 +273,20 @@ EdgeLine FindEdgeLine(const EdgeImage& image, const geometry::Intrinsics& intrin
     FindSteps(profile, options, undistorted, intrinsics, result.profiles, &candidates);
     ++result.profiles;
   }
-  result.candidates = static_cast<int>(candidates.size());
+  for (const Candidate& c : candidates) result.points.push_back(c.point);
   const std::size_t needed = std::max<std::size_t>(
       4, static_cast<std::size_t>(std::ceil(options.min_inlier_fraction * result.profiles)));
-  if (candidates.size() < needed) return result;
-
-  // RANSAC over pairs from different profiles, seeded: the same image gives the same line.
-  std::mt19937 rng(12345);
-  std::uniform_int_distribution<std::size_t> pick(0, candidates.size() - 1);
-  const double min_cos = std::cos(options.max_angle_rad);
-  std::size_t best_count = 0;
-  cv::Vec4d best;
-  for (int iteration = 0; iteration < 400; ++iteration) {
-    const Candidate& p = candidates[pick(rng)];
-    const Candidate& q = candidates[pick(rng)];
-    if (p.profile == q.profile) continue;
-    const cv::Point2d d = q.point - p.point;
-    const double length = cv::norm(d);
-    if (length < 1e-9) continue;
-    if (std::abs(d.x * nominal_direction.x() + d.y * nominal_direction.y()) / length < min_cos) {
-      continue;
-    }
-    const cv::Vec4d line(d.x / length, d.y / length, p.point.x, p.point.y);
-    std::size_t n = 0;
-    for (const Candidate& c : candidates) n += Distance(line, c.point) <= options.inlier_px;
-    if (n > best_count) {
-      best_count = n;
-      best = line;
-    }
+  result.needed = static_cast<int>(needed);
+  // Each further line is searched among the steps no earlier line explains (with a margin, so
+  // that the blurred flank of a found edge does not come back as a second line).
+  EdgeLine line;
+  while (static_cast<int>(result.lines.size()) < options.max_lines &&
+         BestLine(candidates, nominal_direction, needed, options, &line)) {
+    result.lines.push_back(line);
+    std::erase_if(candidates, [&](const Candidate& c) {
+      return LineDistance(line.line, c.point) <= 2 * options.inlier_px;
+    });
   }
-  if (best_count < needed) return result;
-  // Refit on the inliers, then once more on the refit's inliers.
-  std::vector<cv::Point2d> inliers = Inliers(candidates, best, options.inlier_px);
-  for (int pass = 0; pass < 2 && inliers.size() >= 2; ++pass) {
-    result.line = FitLine(inliers);
-    inliers = Inliers(candidates, result.line, options.inlier_px);
-  }
-  if (inliers.size() < needed) return result;
-  result.line = FitLine(inliers);
-  double sum_sq = 0;
-  for (const auto& p : inliers) sum_sq += std::pow(Distance(result.line, p), 2);
-  result.inliers = static_cast<int>(inliers.size());
-  result.rms_px = std::sqrt(sum_sq / static_cast<double>(inliers.size()));
-  result.found = true;
   return result;
 }
 

@@ -8,6 +8,9 @@
 // RANSAC line through the candidates, close to the nominal direction, keeps the ones that are
 // collinear, so stretches where the sample matches the paper, highlights touching the edge and
 // other clutter only cost points. Sub-pixel positions come from the area under the step.
+// A straight feature inside the sample (an iso-angle line of a measured BRDF, a shadow) can hold
+// as many steps as the edge itself, so the search returns the few best distinct lines and the
+// caller picks among them with the rest of the mask (reconstruct/target.h).
 #pragma once
 
 #include <array>
@@ -27,6 +30,8 @@ struct EdgeLineOptions {
   double inlier_px = 1.0;            // RANSAC inlier distance
   double max_angle_rad = 0.2;        // line direction vs the nominal edge's direction
   double min_inlier_fraction = 0.2;  // fewest inliers, as a fraction of the profiles sampled
+  int max_lines = 3;                 // distinct lines returned, best first
+  void Validate() const;
 };
 
 // The image in the form the profiles read it: per channel, radiance floored at a small
@@ -38,19 +43,27 @@ struct EdgeImage {
 EdgeImage MakeEdgeImage(const cv::Mat& radiance);
 
 struct EdgeLine {
-  bool found = false;
-  cv::Vec4d line;      // unit direction (x, y) and a point (x, y), undistorted pixels
-  int profiles = 0;    // profiles sampled (inside the image)
-  int candidates = 0;  // steps found on them
-  int inliers = 0;     // candidates on the line
-  double rms_px = 0;   // RMS distance of the inliers to the line
+  cv::Vec4d line;     // unit direction (x, y) and a point (x, y), undistorted pixels
+  int inliers = 0;    // profiles with a step on the line
+  double rms_px = 0;  // RMS distance of the inliers to the line
 };
 
-// Searches for the image of the world segment a→b (plane z = 0). Not finding it (too few
-// collinear steps, the edge out of view) is a result, not an error.
-EdgeLine FindEdgeLine(const EdgeImage& image, const geometry::Intrinsics& intrinsics,
-                      const geometry::CameraPose& nominal, const geometry::Vec3& a,
-                      const geometry::Vec3& b, const EdgeLineOptions& options);
+struct EdgeLines {
+  std::vector<EdgeLine> lines;      // most supported first; empty: the edge was not found
+  std::vector<cv::Point2d> points;  // every step found (undistorted pixels)
+  int profiles = 0;                 // profiles sampled (inside the image)
+  int needed = 0;                   // fewest inliers a line needs
+};
+
+// Searches for the image of the world segment a→b (plane z = 0): up to max_lines lines with at
+// least `needed` inliers each, no two sharing a step. Not finding any (too few collinear steps,
+// the edge out of view) is a result, not an error.
+EdgeLines FindEdgeLines(const EdgeImage& image, const geometry::Intrinsics& intrinsics,
+                        const geometry::CameraPose& nominal, const geometry::Vec3& a,
+                        const geometry::Vec3& b, const EdgeLineOptions& options);
+
+// Distance of a point to a line (direction, point).
+double LineDistance(const cv::Vec4d& line, const cv::Point2d& p);
 
 // Where two lines (direction, point) cross; false when they are (nearly) parallel.
 bool IntersectLines(const cv::Vec4d& a, const cv::Vec4d& b, cv::Point2d* crossing);

@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "common/option_check.h"
 #include "reconstruct/edge_line.h"
+#include "reconstruct/line_pose.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -23,47 +24,97 @@ std::array<geometry::Vec3, 4> WorldCorners(const geometry::TargetGeometry& targe
   return Rectangle(target.cutout_width, target.cutout_height);
 }
 
-// An edge found in the image with the world line it is the image of: edge k of a rectangle
-// from Rectangle() lies on y = const for even k, x = const for odd k.
-struct WorldLine {
-  bool horizontal;  // y = value
+// One straight edge of the mask searched for in the image: the world line it lies on (y = value
+// for a horizontal edge, x = value otherwise) and the lines found near its nominal image.
+struct Slot {
+  bool horizontal;
   double value;
-  cv::Vec4d image;
+  geometry::Vec3 a, b;  // the segment's ends
+  EdgeLines found;
 };
 
-// Pose from whatever edges were found, cut-out and paper outline alike: every crossing of an
-// x = const line with a y = const line is a known point of the plane; a planar PnP on them gives
-// the pose, and the cut-out's corners are its projections. Used when a side of the cut-out shows
-// too little contrast (the sample as bright and as coloured as the paper there).
-bool CornersFromLines(const std::vector<WorldLine>& lines, const geometry::Intrinsics& intrinsics,
-                      const geometry::TargetGeometry& target, std::array<cv::Point2d, 4>* corners) {
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> image;
-  int horizontal = 0, vertical = 0;
-  for (const WorldLine& l : lines) (l.horizontal ? horizontal : vertical) += 1;
-  if (horizontal < 2 || vertical < 2) return false;
-  for (const WorldLine& h : lines) {
-    if (!h.horizontal) continue;
-    for (const WorldLine& v : lines) {
-      cv::Point2d crossing;
-      if (v.horizontal || !IntersectLines(h.image, v.image, &crossing)) continue;
-      object.emplace_back(v.value, h.value, 0);
-      image.push_back(crossing);
-    }
-  }
-  if (object.size() < 4) return false;
-  const cv::Mat k(CameraMatrix(intrinsics));
+// A choice of one found line per slot (or none, kChooseNone), the pose the chosen lines give, and
+// how well that pose explains every slot's steps.
+constexpr int kChooseNone = -1;
+struct Choice {
+  std::vector<int> pick;
   cv::Mat rvec, tvec;
-  if (!cv::solvePnP(object, image, k, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_IPPE)) {
-    return false;
+  std::size_t support = 0;  // steps of all slots within inlier_px of the posed mask
+  std::vector<std::size_t> per_slot;
+  double line_rms_px = 0;  // the chosen lines' distance to the posed mask
+};
+
+// The pose the chosen lines give (reconstruct/line_pose.h), from the rig's nominal pose.
+bool PoseFromLines(const std::vector<Slot>& slots, const cv::Matx33d& k,
+                   const geometry::CameraPose& nominal, Choice* choice) {
+  std::vector<PlaneLine> lines;
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (choice->pick[i] == kChooseNone) continue;
+    lines.push_back({slots[i].a, slots[i].b, slots[i].found.lines[choice->pick[i]].line});
   }
-  cv::solvePnPRefineLM(object, image, k, cv::noArray(), rvec, tvec);
-  std::vector<cv::Point3d> world;
-  for (const geometry::Vec3& w : WorldCorners(target)) world.emplace_back(w.x(), w.y(), w.z());
-  std::vector<cv::Point2d> projected;
-  cv::projectPoints(world, rvec, tvec, k, cv::noArray(), projected);
-  std::copy(projected.begin(), projected.end(), corners->begin());
+  LinePose pose;
+  if (!PoseFromPlaneLines(lines, k, nominal, &pose)) return false;
+  choice->rvec = cv::Mat(pose.rvec, true);
+  choice->tvec = cv::Mat(pose.tvec, true);
+  choice->line_rms_px = pose.rms_px;
   return true;
+}
+
+// How many of each slot's steps lie on the mask as the choice's pose projects it: a line that is
+// not the mask's edge (an iso-angle line of the BRDF, a shadow) bends the pose away from the
+// true edges, so the combination of true edges explains the most steps.
+void Score(const std::vector<Slot>& slots, const cv::Matx33d& k, double inlier_px, Choice* choice) {
+  choice->support = 0;
+  choice->per_slot.assign(slots.size(), 0);
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    std::vector<cv::Point2d> ends;
+    cv::projectPoints(std::vector<cv::Point3d>{{slots[i].a.x(), slots[i].a.y(), 0},
+                                               {slots[i].b.x(), slots[i].b.y(), 0}},
+                      choice->rvec, choice->tvec, cv::Mat(k), cv::noArray(), ends);
+    const cv::Point2d d = ends[1] - ends[0];
+    const double length = cv::norm(d);
+    if (length < 1e-9) continue;
+    const cv::Vec4d line(d.x / length, d.y / length, ends[0].x, ends[0].y);
+    for (const cv::Point2d& p : slots[i].found.points) {
+      choice->per_slot[i] += LineDistance(line, p) <= inlier_px;
+    }
+    choice->support += choice->per_slot[i];
+  }
+}
+
+// Every combination of the slots' lines (and, where `may_omit`, of leaving a slot out), best
+// first by support, then by the lines' consistency; false when none fixes a pose.
+bool ChooseLines(const std::vector<Slot>& slots, const cv::Matx33d& k,
+                 const geometry::CameraPose& nominal, double inlier_px, bool may_omit,
+                 Choice* best) {
+  const int first = may_omit ? kChooseNone : 0;
+  std::vector<int> pick(slots.size(), first);
+  bool found = false;
+  for (;;) {
+    bool usable = true;
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+      usable &= pick[i] != kChooseNone || may_omit;
+      usable &= pick[i] < static_cast<int>(slots[i].found.lines.size());
+    }
+    Choice choice;
+    choice.pick = pick;
+    if (usable && PoseFromLines(slots, k, nominal, &choice)) {
+      Score(slots, k, inlier_px, &choice);
+      if (!found || choice.support > best->support ||
+          (choice.support == best->support && choice.line_rms_px < best->line_rms_px)) {
+        *best = choice;
+        found = true;
+      }
+    }
+    // Next combination (mixed radix over the slots' line counts).
+    std::size_t i = 0;
+    for (; i < slots.size(); ++i) {
+      if (++pick[i] < static_cast<int>(slots[i].found.lines.size())) break;
+      pick[i] = first;
+    }
+    if (i == slots.size()) break;
+  }
+  return found;
 }
 
 }  // namespace
@@ -79,6 +130,7 @@ void TargetOptions::Validate() const {
   CheckOption(min_log_step > 0, "TargetOptions.min_log_step", min_log_step, "> 0");
   CheckOption(min_edge_fraction > 0 && min_edge_fraction <= 1, "TargetOptions.min_edge_fraction",
               min_edge_fraction, "in (0, 1]");
+  CheckOption(lines_per_edge >= 1, "TargetOptions.lines_per_edge", lines_per_edge, ">= 1");
   CheckOption(max_reprojection_px > 0, "TargetOptions.max_reprojection_px", max_reprojection_px,
               "> 0");
 }
@@ -101,7 +153,9 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
                                 const geometry::TargetGeometry& target,
                                 const TargetOptions& options) {
   options.Validate();
-  (void)valid;  // clipped pixels keep their lower bound, which still marks an edge
+  // Clipped pixels keep their lower bound (saturation / shortest exposure), which joins the
+  // unclipped values around them without a step and still marks the cut-out's edge.
+  (void)valid;
   const EdgeImage image = MakeEdgeImage(radiance);
   EdgeLineOptions edge_options;
   edge_options.search_band_m =
@@ -110,47 +164,95 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
   edge_options.profile_step_px = options.profile_step_px;
   edge_options.min_log_step = options.min_log_step;
   edge_options.min_inlier_fraction = options.min_edge_fraction;
+  edge_options.max_lines = options.lines_per_edge;
+  const cv::Matx33d k = CameraMatrix(intrinsics);
 
-  TargetCorners result;
-  std::vector<WorldLine> lines;
-  std::string missing;
   const auto search = [&](const std::array<geometry::Vec3, 4>& rectangle, int e) {
-    const EdgeLine found = FindEdgeLine(image, intrinsics, nominal, rectangle[e],
-                                        rectangle[(e + 1) % 4], edge_options);
-    if (found.found) {
-      lines.push_back({e % 2 == 0, e % 2 == 0 ? rectangle[e].y() : rectangle[e].x(), found.line});
-    }
-    return found;
+    const geometry::Vec3& a = rectangle[e];
+    const geometry::Vec3& b = rectangle[(e + 1) % 4];
+    return Slot{e % 2 == 0, e % 2 == 0 ? a.y() : a.x(), a, b,
+                FindEdgeLines(image, intrinsics, nominal, a, b, edge_options)};
   };
-  double rms_sum = 0;
+  TargetCorners result;
+  std::vector<Slot> cutout;
+  std::string missing;
   for (int e = 0; e < 4; ++e) {
-    const EdgeLine found = search(WorldCorners(target), e);
-    result.edge_points[e] = found.inliers;
-    if (found.found) {
+    cutout.push_back(search(WorldCorners(target), e));
+    const EdgeLines& found = cutout.back().found;
+    if (!found.lines.empty()) {
       ++result.cutout_edges_found;
-      rms_sum += found.rms_px * found.rms_px;
     } else {
       missing += (missing.empty() ? "" : "; ") + std::string("edge ") + std::to_string(e) + ": " +
-                 std::to_string(found.candidates) + " steps on " + std::to_string(found.profiles) +
-                 " profiles, none enough in a line";
+                 std::to_string(found.points.size()) + " steps on " +
+                 std::to_string(found.profiles) + " profiles, none enough in a line";
     }
   }
-  if (result.cutout_edges_found == 4) {
-    // Corner k is where edge k-1 (arriving) meets edge k (leaving).
-    for (int k = 0; k < 4; ++k) {
-      if (!IntersectLines(lines[(k + 3) % 4].image, lines[k].image, &result.corners[k])) {
-        throw Error("target not found: two edges of the cut-out are parallel");
+  const double inlier_px = edge_options.inlier_px;
+  const auto finish = [&](const std::vector<Slot>& slots, const Choice& choice) {
+    double sum_sq = 0;
+    int lines = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const int pick = choice.pick[i];
+      result.edge_points[i] = pick == kChooseNone ? 0 : slots[i].found.lines[pick].inliers;
+      if (pick == kChooseNone) continue;
+      sum_sq += std::pow(slots[i].found.lines[pick].rms_px, 2);
+      ++lines;
+    }
+    result.line_rms_px = lines > 0 ? std::sqrt(sum_sq / lines) : 0;
+  };
+  // The four sides of the cut-out, one line each: the combination whose pose explains the most
+  // steps, taken when its pose keeps every side (each on enough of its own steps).
+  Choice choice;
+  if (result.cutout_edges_found == 4 &&
+      ChooseLines(cutout, k, nominal, inlier_px, false, &choice)) {
+    bool consistent = true;
+    for (std::size_t i = 0; i < 4; ++i) {
+      consistent &= choice.per_slot[i] >= static_cast<std::size_t>(cutout[i].found.needed);
+    }
+    if (consistent) {
+      // Corner k is where edge k-1 (arriving) meets edge k (leaving).
+      for (int c = 0; c < 4; ++c) {
+        if (!IntersectLines(cutout[(c + 3) % 4].found.lines[choice.pick[(c + 3) % 4]].line,
+                            cutout[c].found.lines[choice.pick[c]].line, &result.corners[c])) {
+          throw Error("target not found: two edges of the cut-out are parallel");
+        }
       }
+      finish(cutout, choice);
+      return result;
     }
-    result.line_rms_px = std::sqrt(rms_sum / 4);
-    return result;
+    result.cutout_edges_found = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      result.cutout_edges_found +=
+          choice.per_slot[i] >= static_cast<std::size_t>(cutout[i].found.needed);
+    }
+    missing += std::string(missing.empty() ? "" : "; ") +
+               "no combination of the sides' lines forms the cut-out";
   }
+  // A side is blind (the sample as bright and as coloured as the paper there) or holds only
+  // lines that are not the mask's: the paper's outline joins in, any side may be left out, and
+  // the cut-out's corners are the projections of the best pose.
   if (options.use_paper_outline) {
+    std::vector<Slot> slots = cutout;
     const auto paper = Rectangle(target.paper_width, target.paper_height);
-    for (int e = 0; e < 4; ++e) result.paper_edges_found += search(paper, e).found ? 1 : 0;
-    if (CornersFromLines(lines, intrinsics, target, &result.corners)) {
-      result.line_rms_px =
-          result.cutout_edges_found > 0 ? std::sqrt(rms_sum / result.cutout_edges_found) : 0;
+    for (int e = 0; e < 4; ++e) {
+      slots.push_back(search(paper, e));
+      result.paper_edges_found += slots.back().found.lines.empty() ? 0 : 1;
+    }
+    // Eight slots, each left out or on one of its lines: two lines each keep the combinations
+    // to 3^8 (the paper's outer edges, paper against the table, are rarely ambiguous).
+    for (Slot& slot : slots) {
+      if (slot.found.lines.size() > 2) slot.found.lines.resize(2);
+    }
+    if (ChooseLines(slots, k, nominal, inlier_px, true, &choice)) {
+      std::vector<cv::Point3d> world;
+      for (const geometry::Vec3& w : WorldCorners(target)) world.emplace_back(w.x(), w.y(), w.z());
+      std::vector<cv::Point2d> projected;
+      cv::projectPoints(world, choice.rvec, choice.tvec, cv::Mat(k), cv::noArray(), projected);
+      std::copy(projected.begin(), projected.end(), result.corners.begin());
+      result.cutout_edges_found = 0;
+      for (std::size_t i = 0; i < 4; ++i)
+        result.cutout_edges_found += choice.pick[i] != kChooseNone;
+      finish(slots, choice);
       return result;
     }
   }

@@ -1,13 +1,17 @@
 // Finding the paper mask's cut-out in an HDR image and the camera pose from its corners.
 //
 // The search starts from the cut-out as the rig's nominal pose projects it: each of the four
-// edges is a robust line through the steps found on profiles across it (reconstruct/edge_line.h:
-// log radiance per colour channel, either sign, several candidates per profile, RANSAC), and
-// the corners are the lines' intersections — so a corner hidden from view is still found.
-// Where a side of the cut-out shows too little contrast along its whole length (a sample as
-// bright and as coloured as the paper there), the paper's outline joins in: every crossing of
-// a found x = const edge with a found y = const edge is a known point of the plane, a planar
-// PnP on them gives the pose and the cut-out's corners are its projections.
+// edges yields up to lines_per_edge robust lines through the steps found on profiles across it
+// (reconstruct/edge_line.h: log radiance per colour channel, either sign, several candidates per
+// profile, RANSAC). A straight feature inside a sample (an iso-angle line of a measured BRDF)
+// can hold as many steps as the edge, so the sides are chosen together: every combination of
+// the edges' lines gives a pose (fitted to the lines, reconstruct/line_pose.h) and the one whose
+// posed rectangle explains the most steps of all four edges wins, taken when it keeps each side
+// on enough of its own steps. The corners are then the chosen lines' intersections, so a corner
+// hidden from view is still found. Where a side shows too little contrast along its whole
+// length (a sample as bright and as coloured as the paper there) or no combination forms the
+// cut-out, the paper's outline joins in, any side may be left out, and the cut-out's corners
+// are the projections of the best line-fitted pose.
 #pragma once
 
 #include <array>
@@ -25,6 +29,7 @@ struct TargetOptions {
   double min_log_step = 0.2;       // weakest accepted step, |Δ ln(radiance)| over RGB
   double min_edge_fraction = 0.2;  // fewest collinear steps per edge, fraction of its profiles
   bool use_paper_outline = true;   // the paper's outer edges help when a cut-out edge is weak
+  int lines_per_edge = 3;          // candidate lines kept per edge for the joint choice
   double max_reprojection_px = 2.0;  // a pose worse than this is refused
   // A measured camera this far from the rig's nominal one is used, with a warning: either the
   // rig file is off or the edges were found on badly exposed photos.

@@ -1,14 +1,17 @@
-// The cut-out is found on every measured material: simulated captures (realistic 14-bit sensor,
-// three exposures merged to HDR) of all 27 nbrdf materials at mirror, off-specular, near-retro
-// and out-of-plane positions; corners within a pixel of the truth and the pose close to it,
-// starting from a nominal pose a few millimetres and half a degree off.
+// The cut-out is found on every measured material: simulated captures (14-bit sensor, three
+// exposures merged to HDR) of all 27 nbrdf materials at the default scene's designed plan, at
+// near-normal and grazing mirror positions, and at one more per material taken in turn from
+// off-specular, near-retro-reflection and out-of-plane positions; corners within a pixel of the
+// truth and the pose close to it, starting from a nominal pose a few millimetres and half a
+// degree off. The sensor is noise-free: noise only blurs the evidence, while exact renders keep
+// the ties a straight feature inside a sample can make with the edge (measured brass at 65°).
+// Fast by construction (the whole suite must stay quick): 640×480, 2×2 supersampling, no noise.
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <iostream>
-#include <mutex>
 
 #include "brdf/nbrdf_library.h"
+#include "common/angles.h"
 #include "common/parallel.h"
 #include "reconstruct/hdr_merge.h"
 #include "reconstruct/target.h"
@@ -19,16 +22,35 @@
 namespace brdfrig::reconstruct {
 namespace {
 
-constexpr double kDeg = M_PI / 180;
+geometry::AxisPositions At(double camera_arm_deg, double light_arm_deg, double azimuth_deg) {
+  return {{"camera_arm", Radians(camera_arm_deg)},
+          {"light_arm", Radians(light_arm_deg)},
+          {"light_azimuth", Radians(azimuth_deg)}};
+}
 
-struct Position {
-  double camera_arm, light_arm, light_azimuth;  // degrees
-};
+// Every material is seen at these: the default scene's designed plan and two mirror positions
+// (the highlight at the cut-out's centre near the normal, and grazing).
+std::vector<geometry::AxisPositions> CommonPositions() {
+  const sim::Scene scene =
+      sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml");
+  std::vector<geometry::AxisPositions> positions = scene.capture.positions;
+  positions.push_back(At(15, -15, 0));
+  positions.push_back(At(65, -65, 0));
+  return positions;
+}
 
-// Four of the default plan's mirror positions, off-specular ones (the highlight off the cut-out's
-// centre or outside it), a near-retro-reflection one and two with the light out of the plane.
-const std::vector<Position> kPositions = {{15, -15, 0}, {35, -35, 0}, {55, -55, 0}, {65, -65, 0},
-                                          {30, -10, 0}, {10, -40, 0}, {30, 25, 0},  {35, -35, 90}};
+// One of these per material, in turn: mirror at mid elevations, off-specular (the highlight off
+// the cut-out's centre or outside it), near-retro-reflection, the light out of the plane.
+const std::vector<geometry::AxisPositions> kRotatingPositions = {
+    At(35, -35, 0), At(55, -55, 0), At(30, -10, 0), At(10, -40, 0), At(30, 25, 0), At(35, -35, 90)};
+
+std::string Describe(const geometry::AxisPositions& at) {
+  std::string text;
+  for (const auto& [axis, angle] : at) {
+    text += (text.empty() ? "" : ", ") + axis + " " + std::to_string(Degrees(angle));
+  }
+  return text;
+}
 
 struct Outcome {
   bool found = false;
@@ -40,11 +62,8 @@ struct Outcome {
   int cutout_edges = 0;
 };
 
-Outcome Measure(const sim::Simulator& simulator, const Position& p, int index) {
+Outcome Measure(const sim::Simulator& simulator, const geometry::AxisPositions& at, int index) {
   const geometry::RigGeometry& rig = simulator.scene().rig;
-  const geometry::AxisPositions at = {{"camera_arm", p.camera_arm * kDeg},
-                                 {"light_arm", p.light_arm * kDeg},
-                                 {"light_azimuth", p.light_azimuth * kDeg}};
   sim::RenderOptions render;
   render.threads = 1;
   const cv::Mat radiance = simulator.RenderRadiance(at, render);
@@ -60,7 +79,8 @@ Outcome Measure(const sim::Simulator& simulator, const Position& p, int index) {
   const geometry::CameraPose truth = rig.CameraAt(at);
   geometry::CameraPose nominal = truth;  // a real rig is a few mm and half a degree off
   nominal.camera_from_world.translate(geometry::Vec3(0.004, -0.003, 0.002) * (index % 2 ? 1 : -1));
-  nominal.camera_from_world.rotate(Eigen::AngleAxisd(0.5 * kDeg, geometry::Vec3(1, 1, 0).normalized()));
+  nominal.camera_from_world.rotate(
+      Eigen::AngleAxisd(Radians(0.5), geometry::Vec3(1, 1, 0).normalized()));
   Outcome out;
   try {
     const TargetOptions options;
@@ -79,7 +99,7 @@ Outcome Measure(const sim::Simulator& simulator, const Position& p, int index) {
     out.centre_mm = 1e3 * (pose.pose.CenterInWorld() - truth.CenterInWorld()).norm();
     const Eigen::Matrix3d r =
         pose.pose.camera_from_world.linear() * truth.camera_from_world.linear().transpose();
-    out.rotation_deg = Eigen::AngleAxisd(r).angle() / kDeg;
+    out.rotation_deg = Degrees(Eigen::AngleAxisd(r).angle());
     out.cutout_edges = corners.cutout_edges_found;
     out.found = true;
   } catch (const Error& e) {
@@ -91,23 +111,29 @@ Outcome Measure(const sim::Simulator& simulator, const Position& p, int index) {
 TEST(CutoutOnMeasuredMaterials, FoundInEveryPositionOnEveryMaterial) {
   const std::vector<std::string> names = brdf::NbrdfMaterialNames();
   ASSERT_EQ(names.size(), 27u);
+  const std::vector<geometry::AxisPositions> common = CommonPositions();
+  ASSERT_EQ(common.size(), 8u);  // six designed, two mirror
   std::vector<std::unique_ptr<sim::Simulator>> simulators;
-  for (const std::string& name : names) {
+  std::vector<std::vector<geometry::AxisPositions>> positions;
+  for (std::size_t m = 0; m < names.size(); ++m) {
     testing::SceneSpec spec;
-    spec.brdf = "{model: nbrdf, name: " + name + "}";
-    spec.supersampling = 4;  // edges exact to ~0.1 px
-    spec.effects =
-        "[{type: shot_noise, full_well: 30000}, {type: read_noise, sigma: 0.0005}, "
-        "{type: saturation, level: 1.0}, {type: quantization, bits: 14}]";
+    spec.brdf = "{model: nbrdf, name: " + names[m] + "}";
+    spec.supersampling = 2;  // edges exact to ~0.25 px
+    spec.effects = "[{type: saturation, level: 1.0}, {type: quantization, bits: 14}]";
     simulators.push_back(std::make_unique<sim::Simulator>(
-        sim::LoadSceneString(testing::SceneYaml(spec), name + ".yaml")));
+        sim::LoadSceneString(testing::SceneYaml(spec), names[m] + ".yaml")));
+    positions.push_back(common);
+    positions.back().push_back(kRotatingPositions[m % kRotatingPositions.size()]);
   }
-  const std::size_t cases = names.size() * kPositions.size();
+  const std::size_t per_material = common.size() + 1;
+  const std::size_t cases = names.size() * per_material;
   std::vector<Outcome> outcomes(cases);
+  // Cases interleaved across materials so that the threads' contiguous chunks cost alike.
   ParallelFor(cases, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const std::size_t m = i / kPositions.size(), p = i % kPositions.size();
-      outcomes[i] = Measure(*simulators[m], kPositions[p], static_cast<int>(i));
+      const std::size_t m = i % names.size(), p = i / names.size();
+      outcomes[m * per_material + p] =
+          Measure(*simulators[m], positions[m][p], static_cast<int>(m * per_material + p));
     }
   });
 
@@ -116,27 +142,26 @@ TEST(CutoutOnMeasuredMaterials, FoundInEveryPositionOnEveryMaterial) {
   for (std::size_t m = 0; m < names.size(); ++m) {
     Outcome worst;
     int found = 0, fallback = 0;
-    for (std::size_t p = 0; p < kPositions.size(); ++p) {
-      const Outcome& o = outcomes[m * kPositions.size() + p];
-      const Position& at = kPositions[p];
+    for (std::size_t p = 0; p < per_material; ++p) {
+      const Outcome& o = outcomes[m * per_material + p];
+      const std::string where = names[m] + " at " + Describe(positions[m][p]);
       if (!o.found) {
-        ADD_FAILURE() << names[m] << " at camera_arm " << at.camera_arm << ", light_arm "
-                      << at.light_arm << ", light_azimuth " << at.light_azimuth << ": " << o.error;
+        ADD_FAILURE() << where << ": " << o.error;
         continue;
       }
       ++found;
       fallback += o.cutout_edges < 4;
-      EXPECT_LT(o.corner_px, 1.0) << names[m] << " position " << p;
-      EXPECT_LT(o.reprojection, 1.0) << names[m] << " position " << p;
-      EXPECT_LT(o.centre_mm, 5.0) << names[m] << " position " << p;
-      EXPECT_LT(o.rotation_deg, 0.5) << names[m] << " position " << p;
+      EXPECT_LT(o.corner_px, 1.0) << where;
+      EXPECT_LT(o.reprojection, 1.0) << where;
+      EXPECT_LT(o.centre_mm, 5.0) << where;
+      EXPECT_LT(o.rotation_deg, 0.5) << where;
       worst.corner_px = std::max(worst.corner_px, o.corner_px);
       worst.reprojection = std::max(worst.reprojection, o.reprojection);
       worst.centre_mm = std::max(worst.centre_mm, o.centre_mm);
       worst.rotation_deg = std::max(worst.rotation_deg, o.rotation_deg);
     }
     std::printf("%-26s %2d/%-2zu %9.3f %9.3f %9.2f %9.3f %6d\n", names[m].c_str(), found,
-                kPositions.size(), worst.corner_px, worst.reprojection, worst.centre_mm,
+                per_material, worst.corner_px, worst.reprojection, worst.centre_mm,
                 worst.rotation_deg, fallback);
   }
 }
