@@ -8,7 +8,7 @@
 #include "common/angles.h"
 #include "common/error.h"
 #include "common/option_check.h"
-#include "evaluate/sphere_test.h"
+#include "evaluate/sample_figures.h"
 #include "render/capture_view.h"
 #include "render/gl_context.h"
 #include "sim/simulator.h"
@@ -40,49 +40,6 @@ std::string Protocol(const char* region, int bits) {
   std::ostringstream out;
   out << region << ", " << bits << "-bit sensor code values, peak = full scale";
   return out.str();
-}
-
-// The exposure-independent figures over the sample pixels (linear radiance, B,G,R float).
-void NormalizedFigures(const cv::Mat& truth, const cv::Mat& fit, const cv::Mat& mask,
-                       HeldOutResult* r) {
-  std::vector<float> values;
-  for (int y = 0; y < truth.rows; ++y) {
-    const float* p = truth.ptr<float>(y);
-    const uchar* m = mask.ptr<uchar>(y);
-    for (int x = 0; x < truth.cols; ++x) {
-      if (m[x]) values.insert(values.end(), p + 3 * x, p + 3 * x + 3);
-    }
-  }
-  if (values.empty()) throw Error("held-out: the cut-out is not in view");
-  const std::size_t rank = std::min(values.size() - 1, values.size() * 99 / 100);
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank),
-                   values.end());
-  double peak = values[rank];
-  if (!(peak > 0)) peak = 1;  // a black sample: any scale keeps the figures defined
-  cv::Mat a(truth.size(), CV_32FC3), b(truth.size(), CV_32FC3);
-  double se = 0, sq = 0;
-  for (int y = 0; y < truth.rows; ++y) {
-    const float* pt = truth.ptr<float>(y);
-    const float* pf = fit.ptr<float>(y);
-    const uchar* m = mask.ptr<uchar>(y);
-    float* pa = a.ptr<float>(y);
-    float* pb = b.ptr<float>(y);
-    for (int i = 0; i < truth.cols * 3; ++i) {
-      const double ft = std::isnan(pf[i]) ? 1e30 : pf[i];
-      pa[i] = static_cast<float>(SrgbEncode(std::clamp(pt[i] / peak, 0.0, 1.0)));
-      pb[i] = static_cast<float>(SrgbEncode(std::clamp(ft / peak, 0.0, 1.0)));
-      if (m[i / 3]) {
-        se += (ft - pt[i]) * (ft - pt[i]);
-        sq += static_cast<double>(pt[i]) * pt[i];
-      }
-    }
-  }
-  r->normalized_sample =
-      Psnr(a, b, mask, 1.0,
-           "sample only, linear radiance / truth's 99th percentile in the view, clamped, sRGB");
-  r->relative_rmse = sq > 0 ? std::sqrt(se / sq) : std::sqrt(se);
-  r->relative_rmse_protocol =
-      "sample only, linear radiance, RMS(fit - truth) / RMS(truth), unclamped";
 }
 
 }  // namespace
@@ -163,7 +120,11 @@ std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::
     r.whole_photo = Psnr(photo, rendering, cv::Mat(), 1.0, Protocol("whole photo", bits));
     const cv::Mat mask = SampleMask(g, scene.rig.target, 2);
     r.sample_only = Psnr(photo, rendering, mask, 1.0, Protocol("sample only", bits));
-    NormalizedFigures(true_radiance, fitted_radiance, mask, &r);
+    const SampleFigures figures =
+        CompareSampleRadiance(true_radiance, fitted_radiance, mask, "truth");
+    r.normalized_sample = figures.normalized_sample;
+    r.relative_rmse = figures.relative_rmse;
+    r.relative_rmse_protocol = figures.relative_rmse_protocol;
     if (options.keep_images) {
       r.photo = photo;
       r.rendering = rendering;

@@ -7,6 +7,7 @@
 #include "common/format.h"
 #include "evaluate/material_report.h"
 #include "evaluate/svg_plot.h"
+#include "evaluate/validation_photos.h"
 
 namespace brdfrig::evaluate {
 namespace {
@@ -171,6 +172,9 @@ Report ReportFromJson(const json& report) {
   if (figures.contains("held_out")) out.sections.push_back(HeldOutSection(figures["held_out"]));
   if (figures.contains("sphere")) out.sections.push_back(SphereSection(figures["sphere"]));
   if (figures.contains("brdf")) out.sections.push_back(BrdfSection(figures["brdf"]));
+  if (figures.contains("validation_photos")) {
+    out.sections.push_back(ValidationPhotosSection(figures["validation_photos"]));
+  }
   return out;
 }
 

@@ -4,7 +4,8 @@
 //
 //   {"format": "brdfrig-report", "version": 1, "title": "...",
 //    "sections": [{"title", "paragraphs", "tables": [{"caption", "header", "rows"}]}, ...],
-//    "figures": {"held_out": {...}, "sphere": {...}, "brdf": {...}}}   (evaluate/material_report.h)
+//    "figures": {"held_out": {...}, "sphere": {...}, "brdf": {...}, (evaluate/material_report.h)
+//                "validation_photos": {...}}} (evaluate/validation_photos.h)
 #pragma once
 
 #include <filesystem>

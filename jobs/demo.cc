@@ -1,5 +1,6 @@
 #include "jobs/demo.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -11,6 +12,8 @@
 #include "evaluate/material_report.h"
 #include "evaluate/report.h"
 #include "evaluate/report_json.h"
+#include "jobs/ladder_section.h"
+#include "jobs/validation_photos.h"
 #include "reconstruct/batch.h"
 #include "sim/devices.h"
 #include "sim/scene.h"
@@ -128,6 +131,14 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
   judge.held_out.keep_images = true;
   judge.sphere.keep_images = true;
   const evaluate::MaterialFigures figures = evaluate::JudgeFit(scene, fitted, judge);
+  // A plan with validation positions: its photos against the fit, as `brdfrig evaluate
+  // --capture` compares them.
+  std::vector<evaluate::ValidationPhotoResult> validation_photos;
+  if (!result.validation.empty()) {
+    say("      comparing " + std::to_string(result.validation.size()) + " validation photo(s)");
+    validation_photos = CompareValidationPhotos(capture, fitted, {},
+                                                [&](const std::string& m) { say("      " + m); });
+  }
   const double evaluate_s = SecondsSince(start);
 
   say("[4/4] report");
@@ -139,10 +150,12 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
       "devices (session in session/: " + std::to_string(capture.positions.size()) +
       " positions; the rig's clock says " + Fixed(captured.run.timing.session_s, 1) + " s, " +
       Fixed(captured.run.timing.Ratio(), 3) +
-      "× the unavoidable moves, exposures and downloads), reconstructed into the seed's slice "
-      "model, then compared with photos of views not used for the fit (camera and light at "
-      "several elevations, the light turned by phi about the sample normal), on a sphere under "
-      "lights from 0° to 80° and in BRDF space.");
+      "× the unavoidable moves, exposures and downloads), reconstructed into " +
+      ChosenModelPhrase(result.ladder) +
+      " (section Model ladder), then compared with photos of views not used for the fit "
+      "(camera and light at several elevations, the light turned by phi about the sample "
+      "normal), on a sphere under lights from 0° to 80° and in BRDF space" +
+      (result.validation.empty() ? "" : ", and with the capture's validation photos") + ".");
   overview.tables.push_back(
       {"Wall time per step (s)",
        {"capture (simulated devices)", "reconstruction", "evaluation"},
@@ -156,38 +169,24 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
        "light vs nominal (deg)", "clipped", "samples"},
       {}};
   for (const auto& p : result.positions) {
+    const bool validation =
+        std::any_of(result.validation.begin(), result.validation.end(),
+                    [&](const reconstruct::CapturePosition& v) { return v.index == p.index; });
+    const std::string name = std::to_string(p.index) + (validation ? " (validation)" : "");
     if (!p.used) {
-      positions.rows.push_back({std::to_string(p.index), "skipped: " + p.skipped_reason});
+      positions.rows.push_back({name, "skipped: " + p.skipped_reason});
       continue;
     }
-    positions.rows.push_back({std::to_string(p.index), Fixed(Degrees(p.theta_in), 2),
-                              Fixed(p.reprojection_rms_px, 3),
+    positions.rows.push_back({name, Fixed(Degrees(p.theta_in), 2), Fixed(p.reprojection_rms_px, 3),
                               Fixed(p.camera_disagreement_m * 1000, 2),
                               p.light.from_highlight ? "highlight (refined)" : "nominal",
                               Fixed(Degrees(p.light.nominal_disagreement_rad), 3),
                               Fixed(p.invalid_fraction, 4), std::to_string(p.samples)});
   }
   recon.tables.push_back(positions);
-  evaluate::Table slices{
-      "Fitted slices (A1, A2 in 1/sr; h, x0 in degrees), green channel ± 1 sigma",
-      {"theta_in (deg)", "A1", "A2", "h", "x0", "residual (ln)", "warnings"},
-      {}};
-  for (std::size_t i = 0; i < result.material.slices.size(); ++i) {
-    const auto& s = result.material.slices[i];
-    const auto& d = result.material.diagnostics[i];
-    const auto& g = s.channel[1];
-    const auto& sd = d.stddev[1];
-    std::string warnings;
-    for (const auto& w : d.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
-    slices.rows.push_back({Fixed(Degrees(s.theta_in), 2), Fixed(g.a1, 4) + " ± " + Fixed(sd[0], 4),
-                           Fixed(g.a2, 4) + " ± " + Fixed(sd[1], 4),
-                           Fixed(Degrees(g.h), 3) + " ± " + Fixed(Degrees(sd[2]), 3),
-                           Fixed(Degrees(g.x0), 3) + " ± " + Fixed(Degrees(sd[3]), 3),
-                           Fixed(d.residual, 4), warnings.empty() ? "-" : warnings});
-  }
-  recon.tables.push_back(slices);
   for (const auto& w : result.warnings) recon.paragraphs.push_back("warning: " + w);
   report.sections.push_back(recon);
+  report.sections.push_back(LadderSection(result.ladder));
 
   nlohmann::json json = evaluate::NewReportJson(report.title);
   for (const evaluate::ReportSection& section : report.sections) {
@@ -198,6 +197,10 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
                       {"evaluation", evaluate_s},
                       {"rig_clock", captured.run.timing.session_s}};
   json["figures"] = evaluate::FiguresJson(figures, out);
+  if (!validation_photos.empty()) {
+    json["figures"]["validation_photos"] =
+        evaluate::ValidationPhotosJson(validation_photos, capture.name, out);
+  }
   const evaluate::WrittenReport written = evaluate::WriteReport(out, json);
   DemoSummary summary;
   summary.text = written.text;

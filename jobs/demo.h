@@ -1,6 +1,8 @@
-// `brdfrig demo`, the main job: a simulated capture of the default scene → reconstruction →
-// held-out renders against held-out photos → BRDF error against the truth → a report directory
-// (report.html with plots and images, report.txt, material.json, hdr/, views/, the capture).
+// `brdfrig demo`, the main job: a simulated capture of the default scene → reconstruction (every
+// rung of the model ladder, one chosen by validation) → held-out renders against held-out
+// photos → BRDF error against the truth (and the plan's validation photos against the fit, when
+// it has them) → a report directory (report.html with plots and images, the Model ladder
+// section, report.txt, material.json, hdr/, views/, the capture).
 #pragma once
 
 #include <filesystem>

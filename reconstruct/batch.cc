@@ -138,6 +138,7 @@ std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
           brdf::WriteMaterialFile(item.material_file, result.material);
           WriteFileAtomically(out_dir / "report.txt", result.Summary());
           item.status = BatchItem::Status::kDone;
+          item.ladder = result.ladder.Summary();
           item.message = std::string(brdf::ModelKindName(result.material.kind)) +
                          (brdf::IsSliceKind(result.material.kind)
                               ? " (" + std::to_string(result.material.slices.size()) + " slices)"

@@ -26,6 +26,7 @@ struct BatchItem {
   std::filesystem::path input, material_file;
   enum class Status { kDone, kUpToDate, kFailed } status = Status::kFailed;
   std::string message;  // failure reason, or the result's one-line summary
+  std::string ladder;   // done: every rung's scores (LadderResult::Summary), for the terminal
   double seconds = 0;
 };
 

@@ -108,6 +108,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
                               " mm from the rig's nominal: check the rig file, or the cut-out's "
                               "edges in badly exposed photos");
   }
+  data.pose = pose.pose;
   const PlaneView view(nominal.intrinsics, pose.pose);
   {
     StageTimer timer(state->stage_seconds, "light");

@@ -56,12 +56,13 @@ struct MeasuredPosition {
   PositionReport report;
   BrdfSamples samples;          // binned by theta (the seed's slices)
   DirectionSamples directions;  // with directions (the microfacet rungs)
+  geometry::CameraPose pose;    // measured from the cut-out (camera_from_world)
 };
 
 // State shared by the positions of one capture.
 struct MeasureState {
   cv::Mat response;  // recovered once per capture for non-linear (8-bit) photos
-  HdrImage hdr;      // one buffer reused by every position's merge
+  HdrImage hdr;      // one buffer reused by every position's merge: the last position's HDR
   std::map<std::string, double>* stage_seconds = nullptr;
 };
 

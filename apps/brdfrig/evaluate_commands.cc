@@ -17,7 +17,8 @@ struct DemoArgs {
 };
 
 struct EvaluateArgs {
-  std::string material, scene, output = "evaluate-out";
+  std::string material, scene, capture, output = "evaluate-out";
+  std::vector<int> positions;
   std::vector<double> elevations_deg = {20, 40, 60, 75};
   std::vector<double> phis_deg = {0, 45, 90, 180};
   bool linear = false;
@@ -44,9 +45,17 @@ void RegisterEvaluateCommands(CLI::App& app) {
 
   auto eval = std::make_shared<EvaluateArgs>();
   CLI::App* ev = app.add_subcommand(
-      "evaluate", "Judge a material against a simulated scene's truth: held-out views, BRDF error");
+      "evaluate",
+      "Judge a material against a simulated scene's truth (held-out views, sphere, BRDF error) "
+      "and/or a capture's validation photos");
   ev->add_option("material", eval->material, "material.json to evaluate")->required();
-  ev->add_option("--scene", eval->scene, "Scene whose sample is the truth")->required();
+  ev->add_option("--scene", eval->scene, "Scene whose sample is the truth");
+  ev->add_option("--capture", eval->capture,
+                 "Capture (session or `brdfrig simulate` output) whose validation photos are "
+                 "compared with the material under their measured geometry");
+  ev->add_option("--positions", eval->positions,
+                 "Capture positions to compare (default: the plan's validation positions)")
+      ->delimiter(',');
   ev->add_option("-o,--output", eval->output, "Report directory");
   ev->add_option("--elevation", eval->elevations_deg,
                  "Camera and light elevations of the held-out views (degrees)")
@@ -58,6 +67,8 @@ void RegisterEvaluateCommands(CLI::App& app) {
     jobs::EvaluateOptions options;
     options.material = eval->material;
     options.scene = eval->scene;
+    options.capture = eval->capture;
+    options.positions = eval->positions;
     options.output_dir = eval->output;
     options.view_elevations_deg = eval->elevations_deg;
     options.view_phis_deg = eval->phis_deg;

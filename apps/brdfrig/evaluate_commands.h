@@ -1,4 +1,4 @@
-// `brdfrig demo`: parses options and calls evaluate::RunDemo.
+// `brdfrig demo` and `brdfrig evaluate`: parse options and call jobs::RunDemo / RunEvaluate.
 #pragma once
 
 #include <CLI/CLI.hpp>

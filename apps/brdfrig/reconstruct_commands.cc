@@ -65,6 +65,7 @@ void RegisterReconstructCommands(CLI::App& app) {
           item.material_file.string().c_str(), item.seconds,
           item.status == reconstruct::BatchItem::Status::kFailed ? ": " : "",
           item.status == reconstruct::BatchItem::Status::kFailed ? item.message.c_str() : "");
+      if (!item.ladder.empty()) std::printf("%s", item.ladder.c_str());
       failed += item.status == reconstruct::BatchItem::Status::kFailed;
     }
     if (failed > 0) throw Error(std::to_string(failed) + " capture(s) failed (see above)");
