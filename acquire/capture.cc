@@ -40,6 +40,9 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
   const fs::path dir = SessionDir(options.output_dir);
   summary.session_dir = dir;
   const geometry::RigDescription description = rig::ReadRigDescription(options.rig_file);
+  // One owner of the rig: a daemon or another capture using it makes this fail here, before
+  // a session is touched or a device opened.
+  rig::RigLock owner = rig::RigLock::Acquire(options.rig_file);
   std::unique_ptr<SessionStore> store;
   Plan plan;
   if (options.resume && fs::exists(dir)) {
@@ -63,7 +66,7 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
     throw Error(message);
   }
   summary.warnings = check.warnings;
-  rig::Rig rig = rig::OpenRig(options.rig_file);
+  rig::Rig rig = rig::OpenRig(options.rig_file, std::move(owner));
   if (!store) store = SessionStore::Create(dir, plan, description);
   if (!summary.resumed) {
     for (const std::string& w : check.warnings) store->LogEvent("warning", -1, "plan check: " + w);

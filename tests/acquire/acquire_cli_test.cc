@@ -145,5 +145,61 @@ TEST(AcquireCliTest, DaemonAndItsClientCommands) {
   fs::remove_all(socket_dir);
 }
 
+// Issue 15, finding 1: two daemons with different sockets, or a daemon and a foreground
+// capture, drove the same rig at once. Whoever comes second must fail at once, name the
+// holder, and neither open a device nor create anything.
+TEST(AcquireCliTest, OneOwnerOfTheRig) {
+  const auto rig = testing::MakeTestRig("cli_owner");
+  char socket_dir[] = "/tmp/brdfrig-owner-XXXXXX";
+  ASSERT_NE(mkdtemp(socket_dir), nullptr);
+  auto config = [&](const std::string& name, const std::string& data) {
+    const fs::path file = rig.dir / (name + ".yaml");
+    std::ofstream(file) << "data_dir: " << data << "\nrig: rig.yaml\nsocket: " << socket_dir << "/"
+                        << name << ".sock\n";
+    return file.string();
+  };
+  const pid_t daemon = Spawn({"daemon", "--config", config("d1", "data")}, rig.dir / "d1.log");
+  const fs::path socket = fs::path(socket_dir) / "d1.sock";
+  for (int i = 0; i < 500 && !fs::exists(socket); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(fs::exists(socket));
+  const std::string holder = "pid " + std::to_string(daemon) + " (";
+
+  const Result capture = Brdfrig("capture --rig " + Q(rig.rig_file) + " --plan " +
+                                 Q(rig.plan_file) + " -o " + Q(rig.sessions / "s"));
+  EXPECT_EQ(capture.status, 1) << capture.output;
+  EXPECT_NE(capture.output.find("is in use by " + holder), std::string::npos) << capture.output;
+  EXPECT_NE(capture.output.find("daemon --config"), std::string::npos) << capture.output;
+  EXPECT_FALSE(fs::exists(rig.sessions / "s"));
+  EXPECT_TRUE(fs::is_empty(rig.sessions)) << "nothing created, not even a temporary session";
+
+  // Same data directory, another socket: refused on the data directory.
+  const Result same_data = Brdfrig("daemon --config " + config("d2", "data"));
+  EXPECT_EQ(same_data.status, 1) << same_data.output;
+  EXPECT_NE(same_data.output.find("data directory"), std::string::npos) << same_data.output;
+  EXPECT_NE(same_data.output.find(holder), std::string::npos) << same_data.output;
+  EXPECT_FALSE(fs::exists(fs::path(socket_dir) / "d2.sock"));
+
+  // Another data directory, same rig: refused on the rig's devices.
+  const Result same_rig = Brdfrig("daemon --config " + config("d3", "data3"));
+  EXPECT_EQ(same_rig.status, 1) << same_rig.output;
+  EXPECT_NE(same_rig.output.find("the rig's"), std::string::npos) << same_rig.output;
+  EXPECT_NE(same_rig.output.find(holder), std::string::npos) << same_rig.output;
+  EXPECT_FALSE(fs::exists(fs::path(socket_dir) / "d3.sock"));
+
+  const Result check = Brdfrig("rig check --rig " + Q(rig.rig_file));
+  EXPECT_EQ(check.status, 1) << check.output;
+  EXPECT_NE(check.output.find(holder), std::string::npos) << check.output;
+
+  kill(daemon, SIGTERM);
+  EXPECT_EQ(Wait(daemon), 0);
+  // Released with its owner: the rig is free again.
+  const Result after = Brdfrig("capture --rig " + Q(rig.rig_file) + " --plan " + Q(rig.plan_file) +
+                               " -o " + Q(rig.sessions / "s"));
+  EXPECT_EQ(after.status, 0) << after.output;
+  fs::remove_all(socket_dir);
+}
+
 }  // namespace
 }  // namespace brdfrig::acquire
