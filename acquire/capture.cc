@@ -45,6 +45,15 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
   rig::RigLock owner = rig::RigLock::Acquire(options.rig_file);
   std::unique_ptr<SessionStore> store;
   Plan plan;
+  if (options.resume && !fs::exists(dir) && options.plan_file.empty()) {
+    throw Error("cannot resume: there is no session at '" + dir.string() +
+                "' (check the path, or give --plan to start it)");
+  }
+  // Leftovers of a capture killed while creating a session beside this one.
+  for (const std::string& line : CleanStaleSessionTemporaries(
+           dir.parent_path().empty() ? fs::path(".") : dir.parent_path())) {
+    summary.warnings.push_back(line);
+  }
   if (options.resume && fs::exists(dir)) {
     store = SessionStore::Open(dir);
     // The session's own plan is the one to finish; a different plan file is a mistake.
@@ -65,7 +74,7 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
     for (const std::string& e : check.errors) message += "\n  " + e;
     throw Error(message);
   }
-  summary.warnings = check.warnings;
+  summary.warnings.insert(summary.warnings.end(), check.warnings.begin(), check.warnings.end());
   rig::Rig rig = rig::OpenRig(options.rig_file, std::move(owner));
   if (!store) store = SessionStore::Create(dir, plan, description);
   if (!summary.resumed) {

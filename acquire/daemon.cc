@@ -47,6 +47,7 @@ Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
                         "the data directory " + config_.data_dir.string());
   rig_ = rig::OpenRig(config_.rig_file);
   Log("rig " + config_.rig_file.string() + " open; sessions in " + config_.data_dir.string());
+  for (const std::string& line : CleanStaleSessionTemporaries(config_.data_dir)) Log(line);
   // Oldest first (plan.yaml is written when a session is created): the queue keeps its order.
   std::vector<std::pair<fs::file_time_type, fs::path>> found;
   for (const auto& entry : fs::directory_iterator(config_.data_dir)) {

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "session/session_reader.h"
+#include "session/sqlite_db.h"
 #include "tests/acquire/test_rig.h"
 #include "tests/common/run_brdfrig.h"
 
@@ -199,6 +200,69 @@ TEST(AcquireCliTest, OneOwnerOfTheRig) {
                                " -o " + Q(rig.sessions / "s"));
   EXPECT_EQ(after.status, 0) << after.output;
   fs::remove_all(socket_dir);
+}
+
+// Issue 15, finding 4: a frames.file cell holding "../" made `capture --resume` delete a file
+// outside the session; a catalog from a newer brdfrig was misread; `--resume` of a missing
+// session said "error: : cannot open file"; a killed creation's .NAME.tmp-PID stayed forever.
+TEST(AcquireCliTest, ResumeTrustsNothingInTheCatalog) {
+  const auto rig = testing::MakeTestRig("cli_resume_trust");
+  const fs::path session = rig.sessions / "s";
+  const std::string capture = "capture --rig " + Q(rig.rig_file) + " -o " + Q(session);
+  ASSERT_EQ(Brdfrig(capture + " --plan " + Q(rig.plan_file)).status, 0);
+  const fs::path victim = rig.dir / "victim.txt";
+  std::ofstream(victim) << "not the session's";
+  {
+    // Position 2 made incomplete (a resume redoes it, deleting its frames), one of its frames
+    // pointing outside the session.
+    session::SqliteDb db(session / "session.sqlite", session::SqliteDb::Mode::kReadWrite);
+    db.Exec("DELETE FROM positions WHERE position_index = 2");
+    db.Exec(
+        "UPDATE frames SET file = '../../victim.txt' WHERE position_index = 2 AND "
+        "bracket_index = 0");
+  }
+  const Result escaped = Brdfrig(capture + " --resume");
+  EXPECT_EQ(escaped.status, 1) << escaped.output;
+  EXPECT_NE(escaped.output.find("frames.file '../../victim.txt'"), std::string::npos)
+      << escaped.output;
+  EXPECT_TRUE(fs::exists(victim));
+  EXPECT_TRUE(fs::exists(session / "frames" / "p002_b1.png")) << "nothing deleted";
+  const Result read = Brdfrig("reconstruct " + Q(session) + " -o " + Q(rig.dir / "m.json"));
+  EXPECT_EQ(read.status, 1) << read.output;
+  EXPECT_NE(read.output.find("must stay inside"), std::string::npos) << read.output;
+
+  {
+    session::SqliteDb db(session / "session.sqlite", session::SqliteDb::Mode::kReadWrite);
+    db.Exec("UPDATE frames SET file = 'frames/p002_b0.png' WHERE file = '../../victim.txt'");
+    db.Exec("UPDATE meta SET value = '99' WHERE key = 'schema_version'");
+  }
+  const Result newer = Brdfrig(capture + " --resume");
+  EXPECT_EQ(newer.status, 1) << newer.output;
+  EXPECT_NE(newer.output.find("schema_version 99, newer than this brdfrig"), std::string::npos)
+      << newer.output;
+  EXPECT_TRUE(fs::exists(session / "frames" / "p002_b1.png")) << "nothing deleted";
+  const Result verify = Brdfrig("session verify " + Q(session));
+  EXPECT_EQ(verify.status, 1) << verify.output;
+  EXPECT_NE(verify.output.find("schema_version 99"), std::string::npos) << verify.output;
+
+  const Result missing =
+      Brdfrig("capture --rig " + Q(rig.rig_file) + " -o " + Q(rig.sessions / "nope") + " --resume");
+  EXPECT_EQ(missing.status, 1) << missing.output;
+  EXPECT_NE(missing.output.find("no session at '" + (rig.sessions / "nope").string() + "'"),
+            std::string::npos)
+      << missing.output;
+
+  // A creation killed half-way (its pid is gone) is cleaned by the next capture beside it.
+  const pid_t gone = fork();
+  if (gone == 0) _exit(0);
+  Wait(gone);
+  const fs::path leftover = rig.sessions / (".t.tmp-" + std::to_string(gone));
+  fs::create_directories(leftover / "frames");
+  const Result next = Brdfrig(capture.substr(0, capture.find(" -o ")) + " --plan " +
+                              Q(rig.plan_file) + " -o " + Q(rig.sessions / "t2"));
+  EXPECT_EQ(next.status, 0) << next.output;
+  EXPECT_FALSE(fs::exists(leftover));
+  EXPECT_NE(next.output.find("removed " + leftover.string()), std::string::npos) << next.output;
 }
 
 }  // namespace
