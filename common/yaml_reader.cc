@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/atomic_file.h"
+
 namespace brdfrig {
 namespace {
 
@@ -14,11 +16,8 @@ std::string ChildPath(const std::string& parent, const std::string& key) {
 }  // namespace
 
 YamlNode LoadYamlFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return LoadYamlString(text.str(), path);
+  // Human-written configuration: a regular file of at most a few MiB (never a FIFO or device).
+  return LoadYamlString(ReadFileToString(path, kMaxYamlFileBytes), path);
 }
 
 YamlNode LoadYamlString(const std::string& text, const std::string& source_name) {

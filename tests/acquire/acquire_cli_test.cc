@@ -2,6 +2,9 @@
 // statuses and the lines it prints — plan check, capture (and Ctrl-C during a capture),
 // session verify, and the daemon with its client commands.
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +13,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -263,6 +267,56 @@ TEST(AcquireCliTest, ResumeTrustsNothingInTheCatalog) {
   EXPECT_EQ(next.status, 0) << next.output;
   EXPECT_FALSE(fs::exists(leftover));
   EXPECT_NE(next.output.find("removed " + leftover.string()), std::string::npos) << next.output;
+}
+
+// Issue 15, finding 2: `plan check` on /dev/zero ate memory and on a FIFO hung forever; every
+// count from a plan needs a bound with a clear error.
+TEST(AcquireCliTest, InputFilesAndCountsAreBounded) {
+  const auto rig = testing::MakeTestRig("cli_bounds");
+  // Under a memory cap and a time limit, so that the old behaviour fails the test instead of
+  // exhausting the machine or hanging it.
+  const std::string check = "plan check --rig " + Q(rig.rig_file) + " --plan ";
+  auto run = [](const std::string& arguments) {
+    Result result;
+    const std::string command =
+        "ulimit -v 4000000; timeout 20 " + std::string(BRDFRIG_BINARY) + " " + arguments + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    std::array<char, 512> buffer;
+    while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.output += buffer.data();
+    const int status = pclose(pipe);
+    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  const Result zero = run(check + "/dev/zero");
+  EXPECT_EQ(zero.status, 1) << zero.output;
+  EXPECT_NE(zero.output.find("/dev/zero: not a regular file"), std::string::npos) << zero.output;
+  const fs::path fifo = rig.dir / "plan.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const Result pipe = run(check + Q(fifo));
+  EXPECT_EQ(pipe.status, 1) << pipe.output;  // 124 when it hangs until the timeout
+  EXPECT_NE(pipe.output.find("not a regular file"), std::string::npos) << pipe.output;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+
+  std::ofstream(rig.dir / "many.yaml")
+      << "sample: s\npositions: {symmetric_arms: {from_deg: 20, to_deg: 60, count: 2000000000}}\n";
+  const Result many = run(check + Q(rig.dir / "many.yaml"));
+  EXPECT_EQ(many.status, 1) << many.output;
+  EXPECT_NE(many.output.find("many.yaml:2:"), std::string::npos) << many.output;
+  EXPECT_NE(many.output.find("count must be between 1 and 1000"), std::string::npos) << many.output;
+  std::string listed = "sample: s\npositions:\n";
+  for (int i = 0; i < 1001; ++i) listed += "  - {camera_arm: 20, light_arm: -20}\n";
+  std::ofstream(rig.dir / "listed.yaml") << listed;
+  const Result list = run(check + Q(rig.dir / "listed.yaml"));
+  EXPECT_EQ(list.status, 1) << list.output;
+  EXPECT_NE(list.output.find("1001 positions: at most 1000"), std::string::npos) << list.output;
+  std::ofstream(rig.dir / "bracket.yaml")
+      << "sample: s\npositions:\n  - {camera_arm: 20, light_arm: -20}\nexposures: [1, 2, 3, 4, "
+         "5, 6, 7, 8, 9, 10]\n";
+  const Result bracket = run(check + Q(rig.dir / "bracket.yaml"));
+  EXPECT_EQ(bracket.status, 1) << bracket.output;
+  EXPECT_NE(bracket.output.find("10 exposures: a bracket has at most 9"), std::string::npos)
+      << bracket.output;
 }
 
 }  // namespace
