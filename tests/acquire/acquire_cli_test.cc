@@ -319,5 +319,60 @@ TEST(AcquireCliTest, InputFilesAndCountsAreBounded) {
       << bracket.output;
 }
 
+// Issue 15, finding 3: 64 idle connections made every request, an emergency abort included,
+// wait 30 s; a client that sends half a request must not hold up the others either.
+TEST(AcquireCliTest, IdleAndSlowClientsCannotLockOutTheControlApi) {
+  const auto rig = testing::MakeTestRig("cli_lockout");
+  char socket_dir[] = "/tmp/brdfrig-lockout-XXXXXX";
+  ASSERT_NE(mkdtemp(socket_dir), nullptr);
+  const fs::path socket = fs::path(socket_dir) / "d.sock";
+  std::ofstream(rig.dir / "daemon.yaml")
+      << "data_dir: data\nrig: rig.yaml\nsocket: " << socket.string() << "\n";
+  const pid_t daemon =
+      Spawn({"daemon", "--config", (rig.dir / "daemon.yaml").string()}, rig.dir / "daemon.log");
+  for (int i = 0; i < 500 && !fs::exists(socket); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(fs::exists(socket));
+  std::vector<int> idle;
+  for (int i = 0; i < 64; ++i) {
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::strncpy(address.sun_path, socket.c_str(), sizeof(address.sun_path) - 1);
+    ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    // A few send half a request and stall (slow clients); the rest say nothing at all.
+    if (i % 8 == 0) {
+      const std::string half =
+          "POST /v1/sessions HTTP/1.1\r\nHost: x\r\nContent-Length: 100\r\n\r\n{";
+      ASSERT_EQ(::send(fd, half.data(), half.size(), MSG_NOSIGNAL),
+                static_cast<ssize_t>(half.size()));
+    }
+    idle.push_back(fd);
+  }
+  const std::string at = " --socket " + Q(socket);
+  auto timed = [&](const std::string& arguments) {
+    const auto start = std::chrono::steady_clock::now();
+    const Result result = Brdfrig(arguments);
+    return std::make_pair(result, std::chrono::steady_clock::now() - start);
+  };
+  const auto [status, status_time] = timed("status" + at);
+  EXPECT_EQ(status.status, 0) << status.output;
+  EXPECT_NE(status.output.find("daemon idle"), std::string::npos) << status.output;
+  EXPECT_LT(status_time, std::chrono::seconds(2));
+  const auto [abort, abort_time] = timed("abort" + at);
+  EXPECT_NE(abort.output.find("no session is running"), std::string::npos) << abort.output;
+  EXPECT_LT(abort_time, std::chrono::seconds(2));
+  // Idle connections are closed by the daemon after a few seconds, not kept forever.
+  char byte = 0;
+  const auto waited = std::chrono::steady_clock::now();
+  EXPECT_EQ(::recv(idle[1], &byte, 1, 0), 0) << "the daemon closes an idle connection";
+  EXPECT_LT(std::chrono::steady_clock::now() - waited, std::chrono::seconds(10));
+  for (const int fd : idle) ::close(fd);
+  kill(daemon, SIGTERM);
+  EXPECT_EQ(Wait(daemon), 0);
+  fs::remove_all(socket_dir);
+}
+
 }  // namespace
 }  // namespace brdfrig::acquire
