@@ -374,5 +374,42 @@ TEST(AcquireCliTest, IdleAndSlowClientsCannotLockOutTheControlApi) {
   fs::remove_all(socket_dir);
 }
 
+// Issue 15, finding 6: SIGHUP (the SSH session closed) killed a capture without a stop record
+// and without stopping the axes; it is handled like Ctrl-C.
+TEST(AcquireCliTest, HangUpAbortsACaptureCleanly) {
+  const auto rig = testing::MakeTestRig("cli_sighup");
+  std::string scene = testing::SmallSceneYaml();
+  scene.replace(scene.find("reopen_s: 2"), 11, "reopen_s: 2\n  real_time_factor: 0.1");
+  std::ofstream(rig.dir / "scene.yaml") << scene;
+  const fs::path session = rig.sessions / "s";
+  const pid_t pid = Spawn({"capture", "--rig", rig.rig_file.string(), "--plan",
+                           rig.plan_file.string(), "-o", session.string()},
+                          rig.dir / "capture.log");
+  for (int i = 0; i < 1000 && !fs::exists(session / "frames" / "p000_b0.png"); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  kill(pid, SIGHUP);
+  EXPECT_EQ(Wait(pid), 1) << "an exit, not death by the signal";
+  const SessionContents aborted = ReadSession(session);
+  EXPECT_EQ(aborted.exit_status, "aborted");
+  EXPECT_EQ(aborted.stop_reason, "hung up (SIGHUP: the terminal closed)");
+}
+
+// Issue 15, finding 6: a TCP token file others can read was accepted silently.
+TEST(AcquireCliTest, TokenFileReadableByOthersIsRefused) {
+  const auto rig = testing::MakeTestRig("cli_token");
+  std::ofstream(rig.dir / "token") << "0123456789abcdef-token\n";
+  fs::permissions(rig.dir / "token", fs::perms::owner_read | fs::perms::owner_write |
+                                         fs::perms::group_read | fs::perms::others_read);
+  std::ofstream(rig.dir / "daemon.yaml")
+      << "data_dir: data\nrig: rig.yaml\ntcp: {port: 1, token_file: token}\n";
+  const Result refused = Brdfrig("daemon --config " + Q(rig.dir / "daemon.yaml"));
+  EXPECT_EQ(refused.status, 1) << refused.output;
+  EXPECT_NE(refused.output.find("daemon.yaml:3:"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("mode 0644: others may read it"), std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(rig.dir / "data")) << "refused before anything was created";
+}
+
 }  // namespace
 }  // namespace brdfrig::acquire
