@@ -40,8 +40,20 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
   const fs::path dir = SessionDir(options.output_dir);
   summary.session_dir = dir;
   const geometry::RigDescription description = rig::ReadRigDescription(options.rig_file);
+  // One owner of the rig: a daemon or another capture using it makes this fail here, before
+  // a session is touched or a device opened.
+  rig::RigLock owner = rig::RigLock::Acquire(options.rig_file);
   std::unique_ptr<SessionStore> store;
   Plan plan;
+  if (options.resume && !fs::exists(dir) && options.plan_file.empty()) {
+    throw Error("cannot resume: there is no session at '" + dir.string() +
+                "' (check the path, or give --plan to start it)");
+  }
+  // Leftovers of a capture killed while creating a session beside this one.
+  for (const std::string& line : CleanStaleSessionTemporaries(
+           dir.parent_path().empty() ? fs::path(".") : dir.parent_path())) {
+    summary.warnings.push_back(line);
+  }
   if (options.resume && fs::exists(dir)) {
     store = SessionStore::Open(dir);
     // The session's own plan is the one to finish; a different plan file is a mistake.
@@ -62,8 +74,8 @@ CaptureSummary RunCapture(const CaptureOptions& options) {
     for (const std::string& e : check.errors) message += "\n  " + e;
     throw Error(message);
   }
-  summary.warnings = check.warnings;
-  rig::Rig rig = rig::OpenRig(options.rig_file);
+  summary.warnings.insert(summary.warnings.end(), check.warnings.begin(), check.warnings.end());
+  rig::Rig rig = rig::OpenRig(options.rig_file, std::move(owner));
   if (!store) store = SessionStore::Create(dir, plan, description);
   if (!summary.resumed) {
     for (const std::string& w : check.warnings) store->LogEvent("warning", -1, "plan check: " + w);

@@ -40,8 +40,14 @@ bool Interrupted(const SessionContents& s) {
 Daemon::Daemon(DaemonConfig config) : config_(std::move(config)) {
   config_.Validate();
   fs::create_directories(config_.data_dir);
+  // Beside the rig's locks, not in data_dir (which holds sessions only), keyed by the
+  // directory's real path so that two spellings of it conflict.
+  data_dir_lock_ =
+      FileLock::Acquire(rig::LockFile("data", fs::canonical(config_.data_dir).string()),
+                        "the data directory " + config_.data_dir.string());
   rig_ = rig::OpenRig(config_.rig_file);
   Log("rig " + config_.rig_file.string() + " open; sessions in " + config_.data_dir.string());
+  for (const std::string& line : CleanStaleSessionTemporaries(config_.data_dir)) Log(line);
   // Oldest first (plan.yaml is written when a session is created): the queue keeps its order.
   std::vector<std::pair<fs::file_time_type, fs::path>> found;
   for (const auto& entry : fs::directory_iterator(config_.data_dir)) {

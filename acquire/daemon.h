@@ -29,13 +29,16 @@
 #include "acquire/http_server.h"
 #include "acquire/plan.h"
 #include "acquire/run_engine.h"
+#include "common/file_lock.h"
 #include "rig/rig_file.h"
 
 namespace brdfrig::acquire {
 
 class Daemon {
  public:
-  // Opens the rig, scans data_dir, starts listening and the runner. Throws brdfrig::Error.
+  // Locks data_dir and the rig (a second daemon or a capture on either fails here, naming
+  // the holder, before any device is opened), opens the rig, scans data_dir, starts listening and
+  // the runner. Throws brdfrig::Error.
   explicit Daemon(DaemonConfig config);
   // Aborts a running session ("daemon stopped"; resumable), stops listening, removes the socket.
   ~Daemon();
@@ -67,6 +70,7 @@ class Daemon {
   void Log(const std::string& line);
 
   DaemonConfig config_;
+  FileLock data_dir_lock_;  // one daemon per data directory
   rig::Rig rig_;
   std::mutex mutex_;
   std::condition_variable changed_;

@@ -1,5 +1,7 @@
 #include "acquire/daemon_config.h"
 
+#include <cstdio>
+
 #include "common/atomic_file.h"
 #include "common/yaml_reader.h"
 
@@ -33,7 +35,17 @@ DaemonConfig LoadDaemonConfig(const fs::path& file) {
     const YamlNode port = tcp->Required("port");
     config.tcp_port = static_cast<int>(port.InRange(port.AsInt(), 1, 65535));
     const YamlNode token_file = tcp->Required("token_file");
-    std::string token = ReadFileToString(resolve(token_file.AsString()));
+    const fs::path token_path = resolve(token_file.AsString());
+    // The token is the only access control on TCP: a copy others can read is no secret.
+    std::error_code error;
+    const fs::perms mode = fs::status(token_path, error).permissions();
+    if (!error && (mode & (fs::perms::group_all | fs::perms::others_all)) != fs::perms::none) {
+      char octal[8];
+      std::snprintf(octal, sizeof octal, "%04o", static_cast<unsigned>(mode) & 07777);
+      token_file.Fail("the token file " + token_path.string() + " has mode " + octal +
+                      ": others may read it; `chmod 600` it");
+    }
+    std::string token = ReadFileToString(token_path);
     while (!token.empty() &&
            (token.back() == '\n' || token.back() == '\r' || token.back() == ' ')) {
       token.pop_back();

@@ -78,12 +78,16 @@ void OnCompleted(void* /*cls*/, MHD_Connection* /*connection*/, void** con_cls,
 
 HttpServer::HttpServer(int listen_fd, Handler handler, std::string bearer_token)
     : handler_(std::move(handler)), token_(std::move(bearer_token)) {
-  // One internal thread polls every connection: a client that connects and says nothing, or
-  // goes away mid-request, only costs its own connection (and a timeout).
+  // The control API must answer an emergency abort whatever other clients do: idle or slow
+  // connections are dropped after kIdleTimeoutS, the connection limit is far above what a
+  // lab needs (64 idle clients once locked everyone out for 30 s), and a pool of threads
+  // serves requests, so one slow handler (a large session list, a plan being designed)
+  // leaves the others free.
   daemon_ = MHD_start_daemon(
       MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_POLL, 0, nullptr, nullptr, &OnRequest, this,
       MHD_OPTION_LISTEN_SOCKET, listen_fd, MHD_OPTION_NOTIFY_COMPLETED, &OnCompleted, nullptr,
-      MHD_OPTION_CONNECTION_TIMEOUT, 30u, MHD_OPTION_CONNECTION_LIMIT, 64u, MHD_OPTION_END);
+      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_CONNECTION_LIMIT, kConnectionLimit,
+      MHD_OPTION_THREAD_POOL_SIZE, kThreads, MHD_OPTION_END);
   if (daemon_ == nullptr) {
     ::close(listen_fd);
     throw Error("cannot start the HTTP server (libmicrohttpd) on the control socket");

@@ -27,6 +27,12 @@ class HttpServer {
  public:
   using Handler = std::function<HttpResponse(const HttpRequest&)>;
   static constexpr std::size_t kMaxBody = 1 << 20;
+  // A connection that sends nothing for this long is closed (idle or slow clients).
+  static constexpr unsigned kIdleTimeoutS = 5;
+  // Open connections at once (each costs a descriptor, not a thread).
+  static constexpr unsigned kConnectionLimit = 512;
+  // Threads serving requests: one slow request does not hold up the others.
+  static constexpr unsigned kThreads = 4;
 
   // Takes ownership of the listening socket. `bearer_token`: when not empty, every request
   // must carry "Authorization: Bearer <token>" (else 401).

@@ -11,7 +11,12 @@ namespace {
 
 std::vector<PlannedPosition> ParseExplicitPositions(const YamlNode& list) {
   std::vector<PlannedPosition> positions;
-  for (const YamlNode& item : list.Elements()) {
+  const std::vector<YamlNode> items = list.Elements();
+  if (items.size() > static_cast<std::size_t>(kMaxPlanPositions)) {
+    list.Fail(std::to_string(items.size()) + " positions: at most " +
+              std::to_string(kMaxPlanPositions) + " per plan");
+  }
+  for (const YamlNode& item : items) {
     if (!item.IsMap()) item.Fail("expected a mapping from axis name to degrees");
     PlannedPosition position;
     position.line = item.line();
@@ -33,7 +38,10 @@ std::vector<PlannedPosition> ParseSymmetricArms(const YamlNode& preset) {
   const double to = preset.Required("to_deg").AsDouble();
   const YamlNode count_node = preset.Required("count");
   const int count = count_node.AsInt();
-  if (count < 1) count_node.Fail("count must be at least 1");
+  if (count < 1 || count > kMaxPlanPositions) {
+    count_node.Fail("count must be between 1 and " + std::to_string(kMaxPlanPositions) + ", got " +
+                    std::to_string(count));
+  }
   if (count == 1 && from != to) count_node.Fail("count 1 needs from_deg == to_deg");
   const std::string camera = preset.Get("camera_axis", "camera_arm");
   const std::string light = preset.Get("light_axis", "light_arm");
@@ -56,7 +64,12 @@ std::vector<PlannedPosition> ParseSymmetricArms(const YamlNode& preset) {
 void ParseExposures(const YamlNode& node, Plan* plan) {
   plan->exposures_line = node.line();
   if (node.IsSequence()) {
-    for (const YamlNode& item : node.Elements()) {
+    const std::vector<YamlNode> items = node.Elements();
+    if (items.size() > static_cast<std::size_t>(kMaxBracketSize)) {
+      node.Fail(std::to_string(items.size()) + " exposures: a bracket has at most " +
+                std::to_string(kMaxBracketSize));
+    }
+    for (const YamlNode& item : items) {
       plan->exposures_s.push_back(item.Positive(item.AsDouble()));
     }
     if (plan->exposures_s.empty()) node.Fail("the bracket needs at least one exposure");
@@ -70,7 +83,9 @@ void ParseExposures(const YamlNode& node, Plan* plan) {
   if (!settings.IsMap()) settings.Fail("expected a mapping (count, metering_s, ...)");
   if (auto count = settings.Optional("count")) {
     a.count = count->AsInt();
-    if (a.count < 1 || a.count > 9) count->Fail("count must be between 1 and 9");
+    if (a.count < 1 || a.count > kMaxBracketSize) {
+      count->Fail("count must be between 1 and " + std::to_string(kMaxBracketSize));
+    }
   }
   if (auto m = settings.Optional("metering_s")) a.metering_s = m->Positive(m->AsDouble());
   if (auto h = settings.Optional("highlight_max"))

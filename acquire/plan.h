@@ -19,7 +19,9 @@
 //   settle_s: 0.2                   # wait after a move before the first shot (default 0.2)
 //   parallel_moves: true            # move independent axes at once (default true)
 //
-// Every error is a FileError naming file:line:column.
+// Every error is a FileError naming file:line:column. Sizes are bounded (a plan is also what a
+// daemon client sends): at most kMaxPlanPositions positions (listed or from symmetric_arms;
+// a design has its own bound, 24) and kMaxBracketSize exposures per bracket.
 #pragma once
 
 #include <filesystem>
@@ -32,6 +34,11 @@
 #include "geometry/rig_geometry.h"
 
 namespace brdfrig::acquire {
+
+// A session of 1000 positions is many hours of rig time; a larger count is a typo (or an
+// attack on the daemon: 2e9 positions would allocate gigabytes before any check).
+inline constexpr int kMaxPlanPositions = 1000;
+inline constexpr int kMaxBracketSize = 9;
 
 struct PlannedPosition {
   geometry::AxisPositions axes;  // radians

@@ -1,6 +1,7 @@
 #include "acquire/session_store.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 #include "acquire/test_hooks.h"
 #include "common/atomic_file.h"
 #include "common/sha256.h"
+#include "session/catalog_checks.h"
 #include "session/rig_snapshot.h"
 
 namespace brdfrig::acquire {
@@ -28,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // 2: meta holds 'validation_positions' (JSON list of position indices); 1 had no roles.
-constexpr int kSchemaVersion = 2;
+constexpr int kSchemaVersion = session::kSessionSchemaVersion;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -106,6 +108,36 @@ const char* ExitStatusName(ExitStatus status) {
       return "failed";
   }
   return "failed";
+}
+
+std::vector<std::string> CleanStaleSessionTemporaries(const fs::path& parent) {
+  std::vector<std::string> found;
+  std::error_code error;
+  if (!fs::is_directory(parent, error)) return found;
+  for (const auto& entry : fs::directory_iterator(parent, error)) {
+    const std::string name = entry.path().filename().string();
+    const std::size_t tmp = name.rfind(".tmp-");
+    if (name.size() < 2 || name[0] != '.' || tmp == std::string::npos || tmp < 2) continue;
+    const std::string session = name.substr(1, tmp - 1), pid_text = name.substr(tmp + 5);
+    if (!IsValidSessionName(session) || pid_text.empty() || pid_text.size() > 9 ||
+        pid_text.find_first_not_of("0123456789") != std::string::npos ||
+        !entry.is_directory(error)) {
+      continue;
+    }
+    const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
+    const bool alive = pid > 0 && (::kill(pid, 0) == 0 || errno == EPERM);
+    if (alive) {
+      found.push_back("unfinished session creation " + entry.path().string() + " of pid " +
+                      pid_text + " (still running): left alone");
+      continue;
+    }
+    fs::remove_all(entry.path(), error);
+    found.push_back(error ? "cannot remove the unfinished session creation " +
+                                entry.path().string() + ": " + error.message()
+                          : "removed " + entry.path().string() + ", left by pid " + pid_text +
+                                " killed while it created session '" + session + "'");
+  }
+  return found;
 }
 
 std::string UtcNow() {
@@ -235,6 +267,10 @@ std::unique_ptr<SessionStore> SessionStore::Open(const fs::path& dir) {
   }
   auto store = std::unique_ptr<SessionStore>(new SessionStore(dir, std::move(db)));
   store->lock_fd_ = lock_fd;  // released by the destructor, whatever happens below
+  // Before anything is written or deleted: a newer catalog is not ours to change, and a
+  // path that leaves the session (absolute, "../") would make the resume delete elsewhere.
+  session::CheckSchemaVersion(*store->db_, dir);
+  session::CheckCatalogPaths(*store->db_, dir);
   store->db_->Exec("PRAGMA synchronous=FULL");
   Statement check(*store->db_, "SELECT COUNT(*) FROM session");
   if (!check.Step() || check.Int(0) != 1) {
@@ -295,7 +331,8 @@ void SessionStore::DeleteFramesLocked(int position_index) {
   tx.Commit();
   // Rows first, files second: a crash in between leaves unrecorded files, which the next
   // PrepareResume removes; never a row without its file.
-  for (const std::string& f : files) fs::remove(dir_ / f);
+  for (const std::string& f : files)
+    fs::remove(session::CatalogFile(dir_, "frames", f, "frames.file"));
 }
 
 std::set<int> SessionStore::PrepareResume() {

@@ -102,6 +102,12 @@ class SessionStore {
   int lock_fd_ = -1;  // flock'ed while this store is open
 };
 
+// The hidden ".NAME.tmp-PID" directories that a creation killed half-way left in `parent`
+// (never sessions: a session is renamed into place only once its start record is committed).
+// Those whose process is gone are removed; those of a running process are left alone. Returns
+// one line per directory found, saying which.
+std::vector<std::string> CleanStaleSessionTemporaries(const std::filesystem::path& parent);
+
 // UTC now, ISO 8601 with milliseconds ("2026-11-29T17:03:17.123Z").
 std::string UtcNow();
 

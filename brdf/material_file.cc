@@ -213,7 +213,7 @@ Material ParseMaterial(const std::string& json_text, const std::string& source_n
   json doc;
   try {
     doc = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax, or a number out of range (1e400)
     r.Fail("", std::string("not valid JSON (") + e.what() + ")");
   }
   const json& format = r.Field(doc, "", "format");

@@ -1,9 +1,11 @@
 #include "common/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -71,13 +73,40 @@ void WriteFileAtomically(const std::filesystem::path& path, std::string_view tex
   WriteFileAtomically(path, std::as_bytes(std::span(text.data(), text.size())));
 }
 
-std::string ReadFileToString(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), "cannot open file");
-  std::ostringstream out;
-  out << in.rdbuf();
-  if (in.bad()) throw FileError(path.string(), "read error");
-  return out.str();
+std::string ReadFileToString(const std::filesystem::path& path, std::size_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer forever.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    throw FileError(path.string(), std::string("cannot open file: ") + std::strerror(errno));
+  }
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    throw FileError(path.string(), "not a regular file (a directory, FIFO or device is not read)");
+  }
+  if (static_cast<std::uintmax_t>(info.st_size) > max_bytes) {
+    throw FileError(path.string(), "file is " + std::to_string(info.st_size) +
+                                       " bytes, more than the " + std::to_string(max_bytes) +
+                                       " an input file may have");
+  }
+  std::string text;
+  char buffer[65536];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw FileError(path.string(), std::string("read error: ") + std::strerror(errno));
+    if (n == 0) break;
+    // The file may grow while it is read (a proc file, a log): the cap holds all the same.
+    if (text.size() + static_cast<std::size_t>(n) > max_bytes) {
+      throw FileError(path.string(), "file grew past the " + std::to_string(max_bytes) +
+                                         " bytes an input file may have");
+    }
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  return text;
 }
 
 }  // namespace brdfrig

@@ -21,8 +21,15 @@ void WriteFileAtomically(const std::filesystem::path& path, std::string_view tex
 void WriteFileAndSync(const std::filesystem::path& path, std::span<const std::byte> bytes);
 void RenameAndSync(const std::filesystem::path& from, const std::filesystem::path& to);
 
-// Reads a whole file; throws FileError when it cannot.
-std::string ReadFileToString(const std::filesystem::path& path);
+// Inputs a user or client feeds are text files of modest size: the cap keeps a mistaken or
+// hostile path (a disk image, /dev/zero) from eating the memory.
+inline constexpr std::size_t kMaxInputFileBytes = std::size_t{64} << 20;  // 64 MiB
+
+// Reads a whole regular file of at most `max_bytes`; throws FileError when it cannot, when the
+// path is not a regular file (a FIFO, a device, a directory: refused at once, never waited on)
+// or when the file is larger.
+std::string ReadFileToString(const std::filesystem::path& path,
+                             std::size_t max_bytes = kMaxInputFileBytes);
 
 // fsync of a directory, so that a rename inside it is durable.
 void SyncDirectory(const std::filesystem::path& dir);

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/atomic_file.h"
+
 namespace brdfrig {
 namespace {
 
@@ -11,14 +13,38 @@ std::string ChildPath(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;
 }
 
+// yaml-cpp keeps both entries of a repeated key and lookups see the first: a second
+// `exposures:` further down a plan would be silently ignored. Strict reading refuses it.
+void RejectDuplicateKeys(const YAML::Node& node, const std::string& source, std::set<int>* visited,
+                         int depth = 0) {
+  // Deeper than any configuration: a hostile file must not exhaust the stack.
+  if (depth > 64) {
+    const YAML::Mark mark = node.Mark();
+    throw FileError(source, mark.line + 1, mark.column + 1, "nested more than 64 levels deep");
+  }
+  // An alias is the anchored node again (same position): checked once, so that a chain of
+  // aliases ("billion laughs") costs nothing here.
+  if ((node.IsMap() || node.IsSequence()) && !visited->insert(node.Mark().pos).second) return;
+  if (node.IsMap()) {
+    std::set<std::string> seen;
+    for (const auto& kv : node) {
+      if (kv.first.IsScalar() && !seen.insert(kv.first.Scalar()).second) {
+        const YAML::Mark mark = kv.first.Mark();
+        throw FileError(source, mark.line + 1, mark.column + 1,
+                        "duplicate key '" + kv.first.Scalar() + "' (each key may appear once)");
+      }
+      RejectDuplicateKeys(kv.second, source, visited, depth + 1);
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) RejectDuplicateKeys(item, source, visited, depth + 1);
+  }
+}
+
 }  // namespace
 
 YamlNode LoadYamlFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, "cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return LoadYamlString(text.str(), path);
+  // Human-written configuration: a regular file of at most a few MiB (never a FIFO or device).
+  return LoadYamlString(ReadFileToString(path, kMaxYamlFileBytes), path);
 }
 
 YamlNode LoadYamlString(const std::string& text, const std::string& source_name) {
@@ -28,6 +54,8 @@ YamlNode LoadYamlString(const std::string& text, const std::string& source_name)
     if (!root.IsMap()) {
       throw FileError(source_name, 1, 1, "expected a mapping of keys at the top level");
     }
+    std::set<int> visited;
+    RejectDuplicateKeys(root, source_name, &visited);
     return YamlNode(root, file, "");
   } catch (const YAML::Exception& e) {
     throw FileError(source_name, e.mark.line + 1, e.mark.column + 1, e.msg);

@@ -17,7 +17,9 @@ namespace brdfrig {
 
 class YamlNode;
 
-// Loads a YAML file; parse errors become FileError with the parser's position.
+// Loads a YAML file (a regular file of at most kMaxYamlFileBytes); parse errors become
+// FileError with the parser's position.
+inline constexpr std::size_t kMaxYamlFileBytes = std::size_t{8} << 20;  // 8 MiB
 YamlNode LoadYamlFile(const std::string& path);
 // Same for text already in memory; `source_name` is used in messages.
 YamlNode LoadYamlString(const std::string& text, const std::string& source_name);

@@ -34,6 +34,8 @@ Intrinsics ParseIntrinsics(const YamlNode& camera) {
   if (w < 1 || h < 1 || w != std::floor(w) || h != std::floor(h)) {
     resolution.Fail("expected two positive integers [width, height]");
   }
+  // Larger than any sensor (150 MP is 14204 × 10652): a typo that would allocate gigabytes.
+  if (w > 32768 || h > 32768) resolution.Fail("width and height must be at most 32768 pixels");
   k.width = static_cast<int>(w);
   k.height = static_cast<int>(h);
   if (auto focal_px = camera.Optional("focal_px")) {

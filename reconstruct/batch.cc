@@ -49,12 +49,25 @@ bool IsInside(const fs::path& path, const fs::path& root) {
   return r_end == r.end() || (std::next(r_end) == r.end() && r_end->empty());
 }
 
-std::string ExistingFingerprint(const fs::path& material_file) {
+struct Existing {
+  std::string fingerprint;  // "" when there is no readable material
+  std::vector<std::string> dropped;
+};
+
+Existing ExistingMaterial(const fs::path& material_file) {
   if (!fs::exists(material_file)) return {};
   try {
     const brdf::Material m = brdf::ReadMaterialFile(material_file);
-    return m.provenance.value("input_sha256", "") + "/" + m.provenance.value("software", "");
-  } catch (const Error&) {
+    Existing existing{
+        m.provenance.value("input_sha256", "") + "/" + m.provenance.value("software", ""), {}};
+    for (const auto& p : m.provenance.value("positions", nlohmann::json::array())) {
+      if (!p.value("used", true)) {
+        existing.dropped.push_back("p" + std::to_string(p.value("index", -1)) + ": " +
+                                   p.value("skipped", std::string("?")));
+      }
+    }
+    return existing;
+  } catch (const std::exception&) {
     return {};  // unreadable: redo it
   }
 }
@@ -66,6 +79,27 @@ void BatchOptions::Validate() const {
   if (output.empty()) throw OptionsError("reconstruct: no output given (-o)");
   CheckOption(jobs >= 1, "BatchOptions.jobs", jobs, ">= 1");
   reconstruct.Validate();
+}
+
+std::string BatchItem::StatusName() const {
+  switch (status) {
+    case Status::kDone:
+      return dropped.empty() ? "done" : "partial";
+    case Status::kUpToDate:
+      return dropped.empty() ? "up to date" : "up to date, partial";
+    case Status::kFailed:
+      return "FAILED";
+  }
+  return "?";
+}
+
+int BatchExitStatus(const std::vector<BatchItem>& items) {
+  int status = 0;
+  for (const BatchItem& item : items) {
+    if (item.status == BatchItem::Status::kFailed) return 1;
+    if (!item.dropped.empty()) status = 3;
+  }
+  return status;
 }
 
 bool IsCaptureDirectory(const fs::path& dir) {
@@ -119,10 +153,16 @@ std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
         const CaptureSet capture = LoadCapture(item.input);
         const std::string fingerprint = CaptureFingerprint(capture);
         const std::string software = std::string("brdfrig ") + BRDFRIG_VERSION;
-        if (!options.force &&
-            ExistingFingerprint(item.material_file) == fingerprint + "/" + software) {
+        const Existing existing = ExistingMaterial(item.material_file);
+        if (!options.force && existing.fingerprint == fingerprint + "/" + software) {
+          if (options.reconstruct.strict && !existing.dropped.empty()) {
+            throw Error("the material of an earlier run lacks " +
+                        std::to_string(existing.dropped.size()) +
+                        " position(s), refused under --strict (nothing written)");
+          }
           item.status = BatchItem::Status::kUpToDate;
           item.message = "up to date";
+          item.dropped = existing.dropped;
         } else {
           const fs::path out_dir = item.material_file.parent_path();
           if (IsInside(out_dir, item.input)) {
@@ -139,6 +179,7 @@ std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
           WriteFileAtomically(out_dir / "report.txt", result.Summary());
           item.status = BatchItem::Status::kDone;
           item.ladder = result.ladder.Summary();
+          item.dropped = result.Dropped();
           item.message = std::string(brdf::ModelKindName(result.material.kind)) +
                          (brdf::IsSliceKind(result.material.kind)
                               ? " (" + std::to_string(result.material.slices.size()) + " slices)"

@@ -27,8 +27,17 @@ struct BatchItem {
   enum class Status { kDone, kUpToDate, kFailed } status = Status::kFailed;
   std::string message;  // failure reason, or the result's one-line summary
   std::string ladder;   // done: every rung's scores (LadderResult::Summary), for the terminal
+  // The material (done or up to date) lacks these positions: "p03: <reason>". Empty when
+  // every captured position was used.
+  std::vector<std::string> dropped;
   double seconds = 0;
+  // "done", "partial" (a material written without some positions), "up to date", "FAILED"
+  std::string StatusName() const;
 };
+
+// The exit status of `brdfrig reconstruct` for these items: 0 every capture complete, 3 every
+// material written but some positions dropped, 1 some capture failed (nothing written for it).
+int BatchExitStatus(const std::vector<BatchItem>& items);
 
 // Whether `dir` is a capture this command can read (a `brdfrig simulate` output or a session).
 bool IsCaptureDirectory(const std::filesystem::path& dir);

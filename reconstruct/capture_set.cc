@@ -33,8 +33,16 @@ CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir) {
     const YamlNode root = LoadYamlFile(scene.string());
     set.nominal = geometry::ParseRigGeometry(root.Required("rig"));
     std::map<int, CapturePosition> by_index;
+    std::size_t frame_number = 0;
     for (const auto& frame : doc.at("frames")) {
+      const std::size_t number = frame_number++;
       const int index = frame.at("position_index").get<int>();
+      // A negative index would make a phantom slice (p-1) beside the real ones.
+      if (index < 0) {
+        throw FileError(manifest.string(), "frames[" + std::to_string(number) +
+                                               "]: position_index " + std::to_string(index) +
+                                               " is negative (positions count from 0)");
+      }
       CapturePosition& p = by_index[index];
       p.index = index;
       p.validation = frame.value("validation", false);  // absent in older capture.json files
@@ -74,9 +82,10 @@ CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
             ? contents.planned_brackets[static_cast<std::size_t>(index)].size()
             : 0;
     if (bracket.size() < planned) {
-      set.warnings.push_back(
-          "position " + std::to_string(index) + " left out: " + std::to_string(bracket.size()) +
-          " of " + std::to_string(planned) + " exposures recorded (the run stopped inside it)");
+      const std::string reason = std::to_string(bracket.size()) + " of " + std::to_string(planned) +
+                                 " exposures recorded (the run stopped inside it)";
+      set.warnings.push_back("position " + std::to_string(index) + " left out: " + reason);
+      set.left_out.push_back({index, reason});
       continue;
     }
     CapturePosition position;
@@ -85,7 +94,7 @@ CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
                           contents.planned_validation[static_cast<std::size_t>(index)];
     position.axis_readings = bracket.begin()->second->axis_readings;
     for (const auto& [bracket_index, frame] : bracket) {
-      position.frames.push_back({frame->file, frame->exposure_s});
+      position.frames.push_back({frame->file, frame->exposure_s, frame->sha256});
     }
     set.positions.push_back(std::move(position));
   }

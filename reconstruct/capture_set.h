@@ -15,12 +15,15 @@ namespace brdfrig::reconstruct {
 struct BracketFrame {
   std::filesystem::path file;
   double exposure_s = 0;
+  // SHA-256 recorded when the frame was captured (hex); "" when the source records none.
+  // The reconstruction checks it before using the photo.
+  std::string sha256;
 };
 
 struct CapturePosition {
   int index = 0;
   geometry::AxisPositions axis_readings;  // as the rig reported them (radians)
-  std::vector<BracketFrame> frames;  // any order; sorted by exposure when merged
+  std::vector<BracketFrame> frames;       // any order; sorted by exposure when merged
   // A validation position of the plan: captured like the rest, never fitted (the result lists
   // it for the comparison of its photos with the fit's rendering).
   bool validation = false;
@@ -31,11 +34,18 @@ struct CaptureSet {
   geometry::RigGeometry nominal;  // intrinsics, target, nominal light geometry
   std::vector<CapturePosition> positions;
   std::vector<std::string> warnings;  // what the loader left out, and why
+  // Positions the loader could not use (e.g. a bracket the run stopped inside): reported by
+  // the reconstruction as dropped, like a position whose photos are unreadable.
+  struct LeftOut {
+    int index = 0;
+    std::string reason;
+  };
+  std::vector<LeftOut> left_out;
 };
 
 // Reads the photos/capture.json written by `brdfrig simulate` (or `brdfrig capture --sim`),
 // with the nominal geometry from the scene file it names. Throws FileError for a malformed
-// file, a missing photo or a missing scene.
+// file (a negative position_index included), a missing photo or a missing scene.
 CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir);
 
 // Reads an acquisition session (session.sqlite) through session::ReadSession, with the nominal

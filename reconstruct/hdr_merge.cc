@@ -196,7 +196,12 @@ cv::Mat ReadPhoto(const std::string& path) {
   if (image.empty())
     throw FileError(path, "cannot read photo (missing, truncated or not an image)");
   if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
-  if (image.channels() == 1) cv::cvtColor(image, image, cv::COLOR_GRAY2BGR);
+  // A grey photo used as colour would fit a grey material with nothing saying so.
+  if (image.channels() != 3) {
+    throw FileError(path, std::to_string(image.channels()) +
+                              "-channel (grey) photo: the reconstruction needs colour (RGB) "
+                              "photos");
+  }
   if (image.depth() == CV_16F || image.depth() == CV_64F) image.convertTo(image, CV_32F);
   if (image.depth() != CV_8U && image.depth() != CV_16U && image.depth() != CV_32F) {
     throw FileError(path, "unsupported photo depth (expected 8 or 16 bits or float per channel)");

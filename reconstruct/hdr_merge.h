@@ -47,7 +47,7 @@ void MergeBracketInto(const std::vector<cv::Mat>& images, const std::vector<doub
 cv::Mat RecoverResponse(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s);
 
 // Reads photos (PNG, TIFF, JPEG, EXR, camera RAW through LibRaw) keeping their bit depth; throws
-// FileError for unreadable files.
+// FileError for unreadable files and for grey (single-channel) photos.
 cv::Mat ReadPhoto(const std::string& path);
 
 }  // namespace brdfrig::reconstruct

@@ -32,7 +32,22 @@ class StageTimer {
 struct LoadedBracket {
   std::vector<cv::Mat> images;
   std::vector<double> exposures;
+  cv::Mat non_finite;  // CV_8U, 255 where a float photo holds NaN/Inf in any channel
 };
+
+// NaN/Inf in a float photo (EXR, float TIFF) is corrupt data, not light: it must neither
+// vanish silently from the merge nor pass for a highlight.
+void MarkNonFinite(const cv::Mat& image, cv::Mat* mask) {
+  if (image.depth() != CV_32F) return;
+  if (mask->empty()) *mask = cv::Mat::zeros(image.size(), CV_8U);
+  for (int y = 0; y < image.rows; ++y) {
+    const float* row = image.ptr<float>(y);
+    uchar* out = mask->ptr<uchar>(y);
+    for (int x = 0; x < image.cols * image.channels(); ++x) {
+      if (!std::isfinite(row[x])) out[x / image.channels()] = 255;
+    }
+  }
+}
 
 LoadedBracket LoadBracket(const CapturePosition& position, const geometry::Intrinsics& intrinsics) {
   if (position.frames.empty()) throw Error("no photos recorded");
@@ -48,6 +63,7 @@ LoadedBracket LoadBracket(const CapturePosition& position, const geometry::Intri
     if (!bracket.images.empty() && image.type() != bracket.images[0].type()) {
       throw FileError(frame.file.string(), "photo format differs from the rest of its bracket");
     }
+    MarkNonFinite(image, &bracket.non_finite);
     bracket.images.push_back(std::move(image));
     bracket.exposures.push_back(frame.exposure_s);
   }
@@ -83,6 +99,18 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
       state->response = RecoverResponse(bracket.images, bracket.exposures);
     }
     MergeBracketInto(bracket.images, bracket.exposures, state->response, &hdr, options.hdr);
+  }
+  if (!bracket.non_finite.empty()) {
+    report.non_finite_pixels = cv::countNonZero(bracket.non_finite);
+  }
+  if (report.non_finite_pixels > 0) {
+    hdr.valid.setTo(0, bracket.non_finite);
+    hdr.radiance.setTo(cv::Scalar::all(0), bracket.non_finite);
+    hdr.invalid_fraction = static_cast<double>(hdr.valid.total() - cv::countNonZero(hdr.valid)) /
+                           static_cast<double>(hdr.valid.total());
+    report.warnings.push_back(std::to_string(report.non_finite_pixels) +
+                              " pixels are NaN or infinite in the photos: treated as invalid "
+                              "(a corrupt or badly converted float image)");
   }
   report.invalid_fraction = hdr.invalid_fraction;
   if (!options.hdr_dir.empty()) {

@@ -28,6 +28,7 @@ struct PositionReport {
   std::string skipped_reason;  // why the position was left out (used == false)
   double theta_in = 0;
   double invalid_fraction = 0;  // pixels clipped in every exposure
+  long non_finite_pixels = 0;   // NaN/Inf in any exposure (float photos): marked invalid
   double reprojection_rms_px = 0;
   double camera_disagreement_m = 0;  // measured vs nominal camera centre
   double edge_line_rms_px = 0;       // scatter of the cut-out edge points about their lines

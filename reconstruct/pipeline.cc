@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/format.h"
+#include "common/sha256.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -31,6 +32,22 @@ const char* MethodOf(brdf::ModelKind kind) {
              "log(eps + f cos) loss";
   }
   return "?";
+}
+
+// A frame whose content differs from what the capture recorded (edited, truncated, bit rot)
+// must not be fitted as if it were the measurement.
+void VerifyRecordedHashes(const CapturePosition& position) {
+  for (const BracketFrame& frame : position.frames) {
+    if (frame.sha256.empty()) continue;
+    if (!std::filesystem::exists(frame.file)) {
+      throw FileError(frame.file.string(), "recorded photo is missing");
+    }
+    if (Sha256FileHex(frame.file) != frame.sha256) {
+      throw FileError(frame.file.string(),
+                      "SHA-256 differs from the one recorded at capture (the photo changed "
+                      "since; `brdfrig session verify` lists every such file)");
+    }
+  }
 }
 
 }  // namespace
@@ -67,6 +84,13 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   MeasureState state;
   state.stage_seconds = &result.stage_seconds;
   std::vector<PositionSamples> fit_positions, validation_positions;
+  for (const CaptureSet::LeftOut& left : capture.left_out) {
+    if (!options.use_positions.empty() && !Contains(options.use_positions, left.index)) continue;
+    PositionReport report;
+    report.index = left.index;
+    report.skipped_reason = left.reason;
+    result.positions.push_back(report);
+  }
   for (const CapturePosition& position : capture.positions) {
     const bool validation =
         position.validation || Contains(options.validation_positions, position.index);
@@ -78,6 +102,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     const std::string name = PositionName(position.index);
     say(name + ": merging " + std::to_string(position.frames.size()) + " exposures");
     try {
+      VerifyRecordedHashes(position);
       MeasuredPosition data = MeasurePosition(position, capture.nominal, measure, &state);
       PositionSamples samples{position.index, std::move(data.samples), std::move(data.directions),
                               data.report.warnings};
@@ -94,6 +119,15 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   }
   if (result.positions.empty()) {
     throw Error(capture.name + ": no capture positions to reconstruct from");
+  }
+  std::sort(result.positions.begin(), result.positions.end(),
+            [](const PositionReport& a, const PositionReport& b) { return a.index < b.index; });
+  if (const std::vector<std::string> dropped = result.Dropped();
+      options.strict && !dropped.empty()) {
+    std::string reasons;
+    for (const std::string& d : dropped) reasons += "\n  " + d;
+    throw Error(capture.name + ": " + std::to_string(dropped.size()) +
+                " position(s) dropped, refused under --strict (nothing written):" + reasons);
   }
   if (fit_positions.empty()) {
     std::string reasons;
@@ -135,6 +169,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     if (!r.used) {
       p["skipped"] = r.skipped_reason;
     } else {
+      if (!r.warnings.empty()) p["warnings"] = r.warnings;
+      p["non_finite_pixels"] = r.non_finite_pixels;
       p["reprojection_rms_px"] = r.reprojection_rms_px;
       p["light_from_highlight"] = r.light.from_highlight;
       p["light_vs_nominal_deg"] = Degrees(r.light.nominal_disagreement_rad);
@@ -147,10 +183,19 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     positions_json.push_back(p);
   }
   provenance["positions"] = positions_json;
+  provenance["dropped_positions"] = result.Dropped().size();
   material.provenance = provenance;
   // Validates the result like any reader would: a fit must never write an invalid model.
   (void)material.Model();
   return result;
+}
+
+std::vector<std::string> ReconstructionResult::Dropped() const {
+  std::vector<std::string> dropped;
+  for (const PositionReport& p : positions) {
+    if (!p.used) dropped.push_back(PositionName(p.index) + ": " + p.skipped_reason);
+  }
+  return dropped;
 }
 
 std::string ReconstructionResult::Summary() const {

@@ -1,8 +1,10 @@
 // The reconstruction of one capture, in three stages: measure each position (HDR merge →
 // target and pose → light → radiometry → samples; reconstruct/measure_position.h), then fit
 // every rung of the model ladder and choose one by validation (reconstruct/fit_ladder.h).
-// Positions whose photos are missing or corrupt, or whose target cannot be found, are skipped
-// with the reason in the report; no usable position is an error.
+// Positions whose photos are missing, corrupt, changed since capture (SHA-256 recorded in the
+// session), grey, or whose target cannot be found, are dropped with the reason in the report
+// and in material.json's provenance; no usable position is an error, and so is any dropped
+// position under `strict`.
 #pragma once
 
 #include <filesystem>
@@ -38,6 +40,9 @@ struct ReconstructOptions {
   // Position indices measured but never fitted: every rung is scored on them (a plan's
   // validation photos).
   std::vector<int> validation_positions;
+  // Any dropped position is an error (Reconstruct throws; nothing is written): for batch
+  // scripts that must not accept a material from fewer positions than were captured.
+  bool strict = false;
   void Validate() const;
 };
 
@@ -51,6 +56,8 @@ struct ReconstructionResult {
   // what a report compares with the fit's rendering.
   std::vector<CapturePosition> validation;
   std::string Summary() const;  // a short human report
+  // "p03: <reason>" for every position dropped (loader or measurement); empty = complete.
+  std::vector<std::string> Dropped() const;
 };
 
 using ProgressCallback = std::function<void(const std::string&)>;

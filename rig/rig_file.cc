@@ -57,7 +57,13 @@ geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_fil
 }
 
 Rig OpenRig(const std::filesystem::path& rig_file) {
+  ReadRigDescription(rig_file);  // configuration errors (file:line) before the lock's
+  return OpenRig(rig_file, RigLock::Acquire(rig_file));
+}
+
+Rig OpenRig(const std::filesystem::path& rig_file, RigLock held) {
   Rig rig;
+  rig.lock = std::move(held);
   rig.description = ReadRigDescription(rig_file);
   const YamlNode root = LoadYamlFile(rig_file.string());
   const std::string base = rig_file.parent_path().string();

@@ -23,10 +23,13 @@
 #include "geometry/rig_geometry.h"
 #include "rig/axis.h"
 #include "rig/camera.h"
+#include "rig/rig_lock.h"
 
 namespace brdfrig::rig {
 
 struct Rig {
+  // First member, so destroyed last: the devices are closed before another owner may open them.
+  RigLock lock;
   geometry::RigDescription description;
   std::unique_ptr<Camera> camera;
   std::map<std::string, std::unique_ptr<Axis>> axes;  // by axis name
@@ -38,9 +41,13 @@ struct Rig {
 // are validated by its backend when it is opened.
 geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_file);
 
-// Reads rig.yaml and opens every device through the backend registry (backends must have been
-// registered first, e.g. sim::RegisterSimBackends()). Throws FileError for configuration
-// errors and CameraError/AxisError for devices that cannot be opened.
+// Reads rig.yaml, takes the rig's lock (rig_lock.h: a second owner fails here, naming the
+// holder, before any device is opened) and opens every device through the backend registry
+// (backends must have been registered first, e.g. sim::RegisterSimBackends()). Throws FileError for
+// configuration errors and CameraError/AxisError for devices that cannot be opened.
 Rig OpenRig(const std::filesystem::path& rig_file);
+// The same with the rig's lock already taken (RigLock::Acquire(rig_file)), for callers that
+// must own the rig before they touch anything else (a session to resume).
+Rig OpenRig(const std::filesystem::path& rig_file, RigLock held);
 
 }  // namespace brdfrig::rig

@@ -126,6 +126,7 @@ RigCheckReport CheckRig(const std::filesystem::path& rig_file) {
   RigCheckReport report;
   report.rig_file = rig_file;
   const geometry::RigDescription description = ReadRigDescription(rig_file);
+  const RigLock owner = RigLock::Acquire(rig_file);  // a running capture keeps its devices
   const YamlNode root = LoadYamlFile(rig_file.string());
 
   auto check = [&](const std::string& name, const YamlNode& settings, auto open_and_describe) {
@@ -181,6 +182,7 @@ RigCheckReport CheckRig(const std::filesystem::path& rig_file) {
 MoveReport MoveAxis(const std::filesystem::path& rig_file, const std::string& axis,
                     double angle_deg) {
   if (!std::isfinite(angle_deg)) throw OptionsError("rig move: the angle must be a finite number");
+  const RigLock owner = RigLock::Acquire(rig_file);  // never move an axis a capture is using
   return OpenAxis(rig_file, axis)->MoveTo(Radians(angle_deg));
 }
 
@@ -194,6 +196,7 @@ ShootReport Shoot(const std::filesystem::path& rig_file, const std::string& expo
                   const std::filesystem::path& output) {
   const double seconds = ParseExposureText(exposure);
   ReadRigDescription(rig_file);
+  const RigLock owner = RigLock::Acquire(rig_file);
   const YamlNode root = LoadYamlFile(rig_file.string());
   const YamlNode settings = root.Required("camera");
   const auto camera =

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/yaml_reader.h"
+#include "session/catalog_checks.h"
 #include "session/rig_snapshot.h"
 #include "session/sqlite_db.h"
 
@@ -38,6 +39,8 @@ SessionContents ReadSession(const fs::path& dir) {
   if (!fs::exists(db_file))
     throw Error("'" + dir.string() + "' is not a session (no session.sqlite)");
   SqliteDb db(db_file, SqliteDb::Mode::kReadOnly);
+  CheckSchemaVersion(db, dir);
+  CheckCatalogPaths(db, dir);
   SessionContents s;
   s.dir = fs::absolute(dir);
   bool auto_bracket = false;
@@ -97,7 +100,7 @@ SessionContents ReadSession(const fs::path& dir) {
       f.axis_readings = AxesFromJson(q.Text(2));
       f.requested_exposure_s = q.Double(3);
       f.exposure_s = q.Double(4);
-      f.file = s.dir / q.Text(5);
+      f.file = CatalogFile(s.dir, "frames", q.Text(5), "frames.file");
       f.sha256 = q.Text(6);
       f.saturated_fraction = q.Double(7);
       // Auto-bracketing decides a bracket when its position is captured; only a complete

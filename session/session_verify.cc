@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "common/sha256.h"
+#include "session/catalog_checks.h"
 #include "session/sqlite_db.h"
 
 namespace brdfrig::session {
@@ -15,6 +16,8 @@ VerifyReport VerifySession(const fs::path& dir) {
     throw Error("'" + dir.string() + "' is not a session (no session.sqlite)");
   }
   SqliteDb db(dir / "session.sqlite", SqliteDb::Mode::kReadOnly);
+  CheckSchemaVersion(db, dir);
+  CheckCatalogPaths(db, dir);  // never hash (or name) a file outside the session
   VerifyReport report;
   std::set<std::string> recorded;
   {

@@ -13,9 +13,9 @@
 #include "acquire/capture.h"
 #include "acquire/plan_check.h"
 #include "apps/brdfrig/progress_line.h"
-#include "session/session_verify.h"
 #include "common/atomic_file.h"
 #include "coverage/coverage.h"
+#include "session/session_verify.h"
 
 namespace brdfrig::apps {
 namespace {
@@ -27,16 +27,17 @@ struct CaptureArgs {
   int max_attempts = 5;
 };
 
-// Ctrl-C / SIGTERM abort the run cleanly (axes stopped, downloaded frames recorded, stop
-// record written) instead of killing it mid-write; a second one exits at once. The signals are
-// blocked in every thread and taken by one watcher thread, which only touches the engine while
-// RunCapture says it exists.
+// Ctrl-C / SIGTERM / SIGHUP (the terminal or SSH session closed) abort the run cleanly (axes
+// stopped, downloaded frames recorded, stop record written) instead of killing it mid-write; a
+// second one exits at once. The signals are blocked in every thread and taken by one watcher
+// thread, which only touches the engine while RunCapture says it exists.
 class AbortOnSignal {
  public:
   AbortOnSignal() {
     sigemptyset(&set_);
     sigaddset(&set_, SIGINT);
     sigaddset(&set_, SIGTERM);
+    sigaddset(&set_, SIGHUP);
     pthread_sigmask(SIG_BLOCK, &set_, nullptr);  // before any thread exists: all inherit it
     thread_ = std::thread([this] {
       const timespec tick{0, 200'000'000};
@@ -46,11 +47,14 @@ class AbortOnSignal {
         if (sig <= 0) continue;
         if (aborting) std::_Exit(128 + sig);  // the second signal: the user insists
         aborting = true;
+        const char* name = sig == SIGINT ? "SIGINT" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
         std::fprintf(stderr, "\nbrdfrig: %s received, aborting the run (again to exit now)\n",
-                     sig == SIGINT ? "SIGINT" : "SIGTERM");
+                     name);
         std::lock_guard lock(mutex_);
         if (engine_ != nullptr) {
-          engine_->Abort(sig == SIGINT ? "interrupted (Ctrl-C)" : "terminated (SIGTERM)");
+          engine_->Abort(sig == SIGINT   ? "interrupted (Ctrl-C)"
+                         : sig == SIGHUP ? "hung up (SIGHUP: the terminal closed)"
+                                         : "terminated (SIGTERM)");
         }
       }
     });

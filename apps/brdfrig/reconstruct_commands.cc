@@ -17,6 +17,7 @@ struct ReconstructArgs {
   bool force = false;
   double bin_width_deg = 0.02;
   bool no_light_refine = false;
+  bool strict = false;
   std::string model;
 };
 
@@ -42,6 +43,9 @@ void RegisterReconstructCommands(CLI::App& app) {
                   "Model kind to fit: seed, seed_constrained, microfacet, ggx, beckmann "
                   "(default: every rung of the ladder, the best by leave-one-position-out "
                   "validation)");
+  cmd->add_flag("--strict", args->strict,
+                "Fail a capture (write nothing for it) when any of its positions would be "
+                "dropped; exit status 1 instead of 3");
   cmd->add_flag("--no-light-refine", args->no_light_refine,
                 "Keep the light from the highlight's centroid (no joint refinement)");
   cmd->callback([args] {
@@ -53,22 +57,34 @@ void RegisterReconstructCommands(CLI::App& app) {
     options.reconstruct.samples.bin_width = Radians(args->bin_width_deg);
     options.reconstruct.light_refine.enabled = !args->no_light_refine;
     options.reconstruct.model = args->model;
+    options.reconstruct.strict = args->strict;
     const auto items = reconstruct::ReconstructBatch(
         options, [](const std::string& message) { std::fprintf(stderr, "%s\n", message.c_str()); });
-    int failed = 0;
     for (const auto& item : items) {
-      const char* status = item.status == reconstruct::BatchItem::Status::kDone       ? "done"
-                           : item.status == reconstruct::BatchItem::Status::kUpToDate ? "up to date"
-                                                                                      : "FAILED";
-      std::printf(
-          "%-10s %s -> %s (%.1f s)%s%s\n", status, item.input.string().c_str(),
-          item.material_file.string().c_str(), item.seconds,
-          item.status == reconstruct::BatchItem::Status::kFailed ? ": " : "",
-          item.status == reconstruct::BatchItem::Status::kFailed ? item.message.c_str() : "");
+      const bool failed = item.status == reconstruct::BatchItem::Status::kFailed;
+      std::printf("%-10s %s -> %s (%.1f s)%s%s\n", item.StatusName().c_str(),
+                  item.input.string().c_str(), item.material_file.string().c_str(), item.seconds,
+                  failed ? ": " : "", failed ? item.message.c_str() : "");
+      for (const std::string& d : item.dropped) std::printf("           dropped %s\n", d.c_str());
       if (!item.ladder.empty()) std::printf("%s", item.ladder.c_str());
-      failed += item.status == reconstruct::BatchItem::Status::kFailed;
     }
-    if (failed > 0) throw Error(std::to_string(failed) + " capture(s) failed (see above)");
+    // Exit statuses (docs/acquire.md): 0 complete, 3 written with dropped positions, 1 failed.
+    switch (reconstruct::BatchExitStatus(items)) {
+      case 0:
+        return;
+      case 3:
+        std::fprintf(stderr,
+                     "brdfrig: warning: material(s) written without some positions (listed "
+                     "above); exit status 3 (--strict makes this a failure)\n");
+        throw CLI::RuntimeError(3);
+      default: {
+        int failed = 0;
+        for (const auto& item : items) {
+          failed += item.status == reconstruct::BatchItem::Status::kFailed;
+        }
+        throw Error(std::to_string(failed) + " capture(s) failed (see above)");
+      }
+    }
   });
 }
 

@@ -180,6 +180,14 @@ TEST_F(DaemonTest, MalformedRequestsGetA4xxWithAReasonAndWriteNothing) {
          json{{"name", "far"}, {"plan", "sample: s\npositions:\n  - {camera_arm: 95}\n"}}.dump(),
          400, "outside the axis limits");
   expect("POST", "/v1/sessions", std::string(HttpServer::kMaxBody + 10, 'x'), 413, "1 MiB");
+  // Issue 15, finding 2: a 150-byte plan asked for 2e9 positions (9 s, 2.6 GB, then 500).
+  expect("POST", "/v1/sessions",
+         json{{"name", "huge"},
+              {"plan",
+               "sample: s\npositions: {symmetric_arms: {from_deg: 20, to_deg: 60, "
+               "count: 2000000000}}\n"}}
+             .dump(),
+         400, "count must be between 1 and 1000");
   expect("GET", "/v1/nowhere", "", 404, "no such endpoint");
   expect("GET", "/v1/pause", "", 405, "POST");
   expect("POST", "/v1/pause", "", 409, "no session is running");

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "common/error.h"
 
@@ -81,6 +82,23 @@ TEST(MaterialFileTest, TruncatedFileIsAParseErrorNotACrash) {
   const std::string text = SerializeMaterial(Example());
   for (std::size_t cut : {std::size_t{0}, std::size_t{10}, text.size() / 2, text.size() - 3}) {
     EXPECT_THAT(ErrorOf(text.substr(0, cut)), HasSubstr("material.json: not valid JSON"));
+  }
+}
+
+// Issue 15, finding 6: 1e400 overflows a double; it was an internal error without the file.
+TEST(MaterialFileTest, NumberOutOfRangeIsAFileErrorNamingTheFile) {
+  std::string text = SerializeMaterial(Example());
+  const std::size_t at = text.find("\"theta_in\": ") + 12;
+  text.replace(at, text.find_first_of(",\n}", at) - at, "1e400");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("material.json: not valid JSON"));
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "brdfrig_overflow_material.json";
+  std::ofstream(file) << text;
+  try {
+    ReadMaterialFile(file);
+    FAIL() << "1e400 was read";
+  } catch (const FileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(file.string()));
   }
 }
 

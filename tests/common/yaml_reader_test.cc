@@ -38,6 +38,22 @@ TEST(YamlReaderTest, UnknownKeyNamesFileLineAndColumn) {
               HasSubstr("scene.yaml:4:3: unknown key 'sensor.bitz'"));
 }
 
+// Issue 15, finding 6: yaml-cpp keeps the first of two equal keys, so a second `exposures:`
+// further down a plan was silently ignored.
+TEST(YamlReaderTest, DuplicateKeyIsAnErrorAtTheSecond) {
+  EXPECT_THAT(ErrorOf([] { LoadYamlString("a: 1\nb: 2\na: 3\n", "plan.yaml"); }),
+              HasSubstr("plan.yaml:3:1: duplicate key 'a'"));
+  EXPECT_THAT(ErrorOf([] { LoadYamlString("s:\n  - {x: 1, y: 2, x: 3}\n", "scene.yaml"); }),
+              HasSubstr("scene.yaml:2:18: duplicate key 'x'"));
+  // Aliases are checked once, however often they are used (no "billion laughs").
+  std::string bomb = "a0: &a0 {k: 1}\n";
+  for (int i = 1; i < 40; ++i) {
+    bomb += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [*a" + std::to_string(i - 1) +
+            ", *a" + std::to_string(i - 1) + "]\n";
+  }
+  EXPECT_NO_THROW(LoadYamlString(bomb, "bomb.yaml"));
+}
+
 TEST(YamlReaderTest, WrongTypeSaysWhatWasExpectedAndWhere) {
   YamlNode root = LoadYamlString("list:\n  - 1\n  - two\n", "plan.yaml");
   EXPECT_THAT(ErrorOf([&] { root.Required("list").AsDoubles(); }),
