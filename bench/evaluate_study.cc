@@ -8,7 +8,7 @@
 //   bench_evaluate_study photo-count-rungs [--counts 1,2,3,...] [--materials ...] [--set ...]
 // Prints markdown tables and writes SVG plots into DIR (default: docs/figures); the hemisphere
 // study writes DOCS/NAME.md and DOCS/figures/NAME.svg (default DOCS: docs/, NAME:
-// hemisphere_study; photo-count-rungs: photo_count_study). Without --model the hemisphere study
+// study_hemisphere; photo-count-rungs: photo_count_study). Without --model the hemisphere study
 // judges every rung of the ladder side by side; --model seed is the issue-13 baseline.
 #include <algorithm>
 #include <chrono>
@@ -201,7 +201,7 @@ void Materials(int width, int height) {
 }
 
 struct HemisphereArgs {
-  std::string set = "analytic", only, plan = "mirror", model, name = "hemisphere_study";
+  std::string set = "analytic", only, plan = "mirror", model, name = "study_hemisphere";
   std::vector<std::string> materials;  // exact names (empty: the whole set)
   std::vector<int> counts = {1, 2, 3, 4, 6, 8, 12};
   int positions = 6;

@@ -179,6 +179,11 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
       Headline(r.figures, &rung.sphere_mean_db, &rung.sphere_worst_db, &rung.held_out_mean_db,
                &rung.held_out_min_db, &rung.albedo_error_0_75);
       rung.brdf_error = r.brdf_error;
+      for (const evaluate::HeldOutResult& v : r.figures.held_out) {
+        if (v.normalized_sample.psnr_db == rung.held_out_min_db) {
+          rung.held_out_worst_view = v.view.name;
+        }
+      }
       for (const evaluate::SphereLight& l : r.figures.sphere.lights) {
         if (l.psnr_db == rung.sphere_worst_db) rung.sphere_worst_light_deg = l.light_angle_deg;
       }
@@ -373,9 +378,11 @@ std::string LadderMarkdown(const std::vector<MaterialStudyRow>& rows, const Stud
       }
       out << " " << Fixed(r.sphere_mean_db, 1) << " | " << Fixed(r.sphere_worst_db, 1) << " @ "
           << Fixed(r.sphere_worst_light_deg, 0) << "° | " << Fixed(r.held_out_mean_db, 1) << " | "
-          << Fixed(r.held_out_min_db, 1) << " | " << Fixed(r.albedo_error_0_75, 3) << " | "
-          << Fixed(r.brdf_error, 3) << " | " << r.size_bytes << " | " << Fixed(r.fit_s, 2) << " | "
-          << Fixed(r.validation_score, 4) << " |\n";
+          << Fixed(r.held_out_min_db, 1)
+          << (r.held_out_worst_view.empty() ? "" : " @ " + r.held_out_worst_view) << " | "
+          << Fixed(r.albedo_error_0_75, 3) << " | " << Fixed(r.brdf_error, 3) << " | "
+          << r.size_bytes << " | " << Fixed(r.fit_s, 2) << " | " << Fixed(r.validation_score, 4)
+          << " |\n";
     }
   }
   out << "\nSummary over materials (mean; worst material beside it). Albedo goal: relative "

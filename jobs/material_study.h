@@ -47,8 +47,8 @@ struct MaterialStudyOptions {
   std::filesystem::path work_dir;  // scratch; one subdirectory per material
   std::string model;  // ladder rung to force ("seed", ...); empty: every rung, chosen by validation
   bool every_rung = false;  // judge every fitted rung (MaterialStudyRow::rungs)
-  bool brdf_only = false;  // sphere test and BRDF figures only (no held-out views, no GL)
-  void Validate() const;   // throws OptionsError
+  bool brdf_only = false;   // sphere test and BRDF figures only (no held-out views, no GL)
+  void Validate() const;    // throws OptionsError
 };
 
 // One rung's headline figures (same protocols as the row's).
@@ -60,6 +60,7 @@ struct RungRow {
   double validation_score = 0;
   double sphere_mean_db = 0, sphere_worst_db = 0, sphere_worst_light_deg = 0;
   double held_out_mean_db = 0, held_out_min_db = 0;  // NaN with brdf_only
+  std::string held_out_worst_view;                   // the view of held_out_min_db
   double albedo_error_0_75 = 0;
   double brdf_error = 0;
   double fit_s = 0;
