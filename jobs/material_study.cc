@@ -132,9 +132,9 @@ std::string MaterialStudyRow::Report() const {
     }
     out << "sphere " << Fixed(r.sphere_mean_db, 2) << " dB (worst " << Fixed(r.sphere_worst_db, 2)
         << "), held-out " << Fixed(r.held_out_mean_db, 2) << " (min " << Fixed(r.held_out_min_db, 2)
-        << "), albedo err " << Fixed(r.albedo_error_0_75, 3) << ", BRDF err "
-        << Fixed(r.brdf_error, 3) << ", " << r.size_bytes << " B, fit " << Fixed(r.fit_s, 2)
-        << " s";
+        << (r.held_out_worst_view.empty() ? "" : " " + r.held_out_worst_view) << "), albedo err "
+        << Fixed(r.albedo_error_0_75, 3) << ", BRDF err " << Fixed(r.brdf_error, 3) << ", "
+        << r.size_bytes << " B, fit " << Fixed(r.fit_s, 2) << " s";
   }
   return out.str();
 }
