@@ -3,12 +3,19 @@
 //   bench_evaluate_study [photo-count|sweep|materials|all] [--out DIR] [--size WxH]
 //   bench_evaluate_study hemisphere [--set analytic|measured|all] [--study-size WxH]
 //                        [--measured-dir DIR] [--only SUBSTRING] [--docs DIR]
+//                        [--plan mirror|designed] [--positions N] [--model KIND]
+//                        [--materials NAME,NAME,...] [--name NAME] [--albedo-goal X]
+//   bench_evaluate_study photo-count-rungs [--counts 1,2,3,...] [--materials ...] [--set ...]
 // Prints markdown tables and writes SVG plots into DIR (default: docs/figures); the hemisphere
-// study writes DOCS/hemisphere_study.md and DOCS/figures/hemisphere_study.svg (default DOCS:
-// docs/).
+// study writes DOCS/NAME.md and DOCS/figures/NAME.svg (default DOCS: docs/, NAME:
+// study_hemisphere; photo-count-rungs: photo_count_study). Without --model the hemisphere study
+// judges every rung of the ladder side by side; --model seed is the issue-13 baseline.
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -17,6 +24,7 @@
 #include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/format.h"
 #include "evaluate/report.h"
 #include "evaluate/svg_plot.h"
 #include "jobs/material_study.h"
@@ -192,50 +200,208 @@ void Materials(int width, int height) {
   }
 }
 
-// Every material of the set on today's mirror plan, every figure: the baseline the model work
-// is judged against.
-void Hemisphere(const std::string& set, const std::string& only, int width, int height,
-                const std::filesystem::path& measured_dir, const std::filesystem::path& docs) {
+struct HemisphereArgs {
+  std::string set = "analytic", only, plan = "mirror", model, name = "study_hemisphere";
+  std::vector<std::string> materials;  // exact names (empty: the whole set)
+  std::vector<int> counts = {1, 2, 3, 4, 6, 8, 12};
+  int positions = 6;
+  int width = 400, height = 300;
+  double albedo_goal = 0;  // 0: 0.05 for the analytic set, else 0.10
+  std::filesystem::path measured_dir, docs;
+  std::string command;  // the command line, for the generated files
+};
+
+std::vector<jobs::StudyMaterial> StudyMaterials(const HemisphereArgs& a) {
   std::vector<jobs::StudyMaterial> materials;
-  if (set == "analytic" || set == "all") materials = jobs::AnalyticStudyMaterials();
-  if (set == "measured" || set == "all") {
-    const auto measured = jobs::MeasuredStudyMaterials(measured_dir);
+  if (a.set == "analytic" || a.set == "all") materials = jobs::AnalyticStudyMaterials();
+  if (a.set == "measured" || a.set == "all") {
+    const auto measured = jobs::MeasuredStudyMaterials(a.measured_dir);
     if (measured.empty()) {
-      std::printf("(no measured materials in %s)\n", measured_dir.string().c_str());
+      std::printf("(no measured materials in %s)\n", a.measured_dir.string().c_str());
     }
     materials.insert(materials.end(), measured.begin(), measured.end());
   }
-  if (!only.empty()) {
-    std::erase_if(materials, [&](const auto& m) { return m.name.find(only) == std::string::npos; });
+  if (!a.only.empty()) {
+    std::erase_if(materials,
+                  [&](const auto& m) { return m.name.find(a.only) == std::string::npos; });
   }
-  const jobs::StudyPlan plan = jobs::MirrorPlan();
+  if (!a.materials.empty()) {
+    std::erase_if(materials, [&](const auto& m) {
+      return std::find(a.materials.begin(), a.materials.end(), m.name) == a.materials.end();
+    });
+  }
+  return materials;
+}
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string RunNote(const HemisphereArgs& a, double wall_s) {
+  return "Command: `" + a.command + "` — wall time " + Fixed(wall_s / 60, 1) + " min (" +
+         Fixed(wall_s, 0) + " s) on the shared 2-core development machine.\n\n";
+}
+
+// Every material of the set on a plan (today's mirror plan or the designer's), every figure;
+// with --model one rung (the issue-13 baseline: --model seed), otherwise every rung of the
+// ladder judged side by side from one capture and one reconstruction.
+void Hemisphere(const HemisphereArgs& a) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<jobs::StudyMaterial> materials = StudyMaterials(a);
+  const jobs::StudyPlan plan =
+      a.plan == "designed" ? jobs::DesignedPlan(a.positions) : jobs::MirrorPlan();
   jobs::MaterialStudyOptions options;
-  options.width = width;
-  options.height = height;
+  options.width = a.width;
+  options.height = a.height;
+  options.model = a.model;
+  options.every_rung = a.model.empty();
   options.work_dir = std::filesystem::temp_directory_path() / "brdfrig_hemisphere_study";
-  std::printf("\n## Hemisphere study (%zu materials, %dx%d, supersampling %d)\n\n",
-              materials.size(), width, height, options.supersampling);
+  std::printf("\n## Hemisphere study (%zu materials, %dx%d, supersampling %d, plan %s, %s)\n\n",
+              materials.size(), a.width, a.height, options.supersampling, plan.name.c_str(),
+              a.model.empty() ? "every rung" : a.model.c_str());
   std::vector<jobs::MaterialStudyRow> rows;
   for (const auto& material : materials) {
     rows.push_back(jobs::RunMaterialStudyPoint(material, plan, options));
     std::printf("%s (%.1f s)\n", rows.back().Report().c_str(), rows.back().wall_s);
     std::fflush(stdout);
   }
-  const std::string table = jobs::MarkdownTable(rows, plan);
-  std::printf("\n%s\nsummary: %s\n", table.c_str(), jobs::Summarize(rows).Report().c_str());
-  std::filesystem::create_directories(docs / "figures");
+  const double goal = a.albedo_goal > 0 ? a.albedo_goal : (a.set == "analytic" ? 0.05 : 0.10);
+  const std::string table =
+      a.model.empty() ? jobs::LadderMarkdown(rows, plan, goal) : jobs::MarkdownTable(rows, plan);
+  const double wall = Seconds(start);
+  std::printf("\n%s\nsummary: %s\nwall time %.1f s\n", table.c_str(),
+              jobs::Summarize(rows).Report().c_str(), wall);
+  std::filesystem::create_directories(a.docs / "figures");
+  const std::string what =
+      a.model.empty() ? "Every rung of the model ladder judged side by side (one capture, one "
+                        "reconstruction per material); *chosen*: the rung leave-one-position-out "
+                        "validation chose (the written material); *best*: the highest sphere mean."
+                      : "Model forced to `" + a.model + "`.";
   WriteFileAtomically(
-      docs / "hemisphere_study.md",
-      "# Hemisphere study (generated by `bench_evaluate_study hemisphere`)\n\nSeed model, " +
-          std::to_string(width) + "x" + std::to_string(height) +
-          " px captures. Sphere: mean over lights and per light (orthographic sphere, truth's "
-          "99th percentile = 1, clamped, sRGB, PSNR). Held-out: normalized sample PSNR (peak = "
-          "truth's 99th percentile of the view's sample radiance), mean over light azimuths "
-          "per elevation, and the lowest view. Albedo err: max over channels of the relative "
-          "directional-albedo error. BRDF err: log-cosine error.\n\n" +
+      a.docs / (a.name + ".md"),
+      "# " + a.name + " (generated by `bench_evaluate_study hemisphere`)\n\n" + RunNote(a, wall) +
+          what + " " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+          " px captures, supersampling 1, 3 exposures, 14-bit sensor with noise. Sphere: mean "
+          "over lights 0°, 30°, 60°, 80° and the worst light (orthographic sphere, truth's 99th "
+          "percentile = 1, clamped, sRGB, PSNR). Held-out: normalized sample PSNR (peak = "
+          "truth's 99th percentile of the view's sample radiance) over views at elevations 20°, "
+          "40°, 60°, 75° × light azimuths 0°, 45°, 90°, 180°: mean, and the lowest view. Albedo "
+          "err: max over channels and 0°–75° of the relative directional-albedo error. BRDF err: "
+          "log-cosine error. Size: the model in material.json. Fit: the rung's final fit "
+          "(validation folds not included).\n\n" +
           table);
-  WriteFileAtomically(docs / "figures" / "hemisphere_study.svg",
-                      jobs::StudyPlot(rows, "Hemisphere study, " + plan.name));
+  WriteFileAtomically(a.docs / "figures" / (a.name + ".svg"),
+                      a.model.empty() ? jobs::LadderPlot(rows, a.name + ", " + plan.name)
+                                      : jobs::StudyPlot(rows, a.name + ", " + plan.name));
+}
+
+// The photo-count study per rung: designed plans of each count, every rung fitted from one
+// capture per material and count, judged by the sphere test (CPU; no held-out views).
+void PhotoCountRungs(const HemisphereArgs& a) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<jobs::StudyMaterial> materials = StudyMaterials(a);
+  jobs::MaterialStudyOptions options;
+  options.width = a.width;
+  options.height = a.height;
+  options.every_rung = true;
+  options.brdf_only = true;
+  options.work_dir = std::filesystem::temp_directory_path() / "brdfrig_photo_count_study";
+  std::vector<std::string> kinds;
+  std::vector<evaluate::Series> series;
+  std::ostringstream table, detail;
+  std::vector<std::vector<std::string>> cells;  // per count: one cell per column
+  for (int count : a.counts) {
+    const jobs::StudyPlan plan = jobs::DesignedPlan(count);
+    std::vector<jobs::MaterialStudyRow> rows;
+    for (const auto& material : materials) {
+      rows.push_back(jobs::RunMaterialStudyPoint(material, plan, options));
+      std::printf("[%d positions] %s (%.1f s)\n", count, rows.back().Report().c_str(),
+                  rows.back().wall_s);
+      std::fflush(stdout);
+      const auto& r = rows.back();
+      detail << "| " << count << " | " << r.material.name << " | " << r.result.positions_used
+             << " |";
+      if (!r.error.empty()) {
+        detail << " failed: " << r.error << " |\n";
+        continue;
+      }
+      for (const jobs::RungRow& rung : r.rungs) {
+        detail << " " << (rung.fitted ? Fixed(rung.sphere_mean_db, 1) : std::string("—"))
+               << (rung.chosen ? " (c)" : "") << " |";
+      }
+      detail << "\n";
+    }
+    for (const auto& r : rows) {
+      for (const auto& rung : r.rungs) {
+        if (std::find(kinds.begin(), kinds.end(), rung.kind) == kinds.end())
+          kinds.push_back(rung.kind);
+      }
+    }
+    std::vector<std::string> row = {std::to_string(count)};
+    std::vector<std::string> columns = kinds;
+    columns.push_back("chosen");
+    columns.push_back("best");
+    for (const std::string& kind : columns) {
+      const jobs::RungSummary s = jobs::SummarizeRung(rows, kind, 0.1);
+      row.push_back(Fixed(s.sphere_mean_db, 1) + " (" + Fixed(s.worst_sphere_db, 1) + ")");
+      auto it = std::find_if(series.begin(), series.end(),
+                             [&](const evaluate::Series& x) { return x.label == kind; });
+      if (it == series.end()) {
+        series.push_back({kind, {}, {}, true});
+        it = series.end() - 1;
+      }
+      it->x.push_back(count);
+      it->y.push_back(s.sphere_mean_db);
+    }
+    cells.push_back(row);
+  }
+  table << "| positions |";
+  for (const auto& k : kinds) table << " " << k << " |";
+  table << " validation-chosen | best by sphere |\n|---|";
+  for (std::size_t i = 0; i < kinds.size() + 2; ++i) table << "---|";
+  table << "\n";
+  for (const auto& row : cells) {
+    table << "|";
+    for (const auto& c : row) table << " " << c << " |";
+    table << "\n";
+  }
+  const double wall = Seconds(start);
+  std::string names;
+  for (const auto& m : materials) names += (names.empty() ? "" : ", ") + m.name;
+  std::string header = "| positions | material | positions used |";
+  std::string rule = "|---|---|---|";
+  for (const auto& k : kinds) {
+    header += " " + k + " |";
+    rule += "---|";
+  }
+  const std::string text =
+      "# Photo-count study per rung (generated by `bench_evaluate_study photo-count-rungs`)\n\n" +
+      RunNote(a, wall) + "Materials (" + std::to_string(materials.size()) + "): " + names +
+      ". Each count: coverage::DesignPlan for the default rig with that many positions, one "
+      "simulated capture per material (" +
+      std::to_string(a.width) + "x" + std::to_string(a.height) +
+      " px, 3 exposures, 14-bit sensor with noise), every rung fitted, each judged by the sphere "
+      "test (lights 0°, 30°, 60°, 80°). Cells: mean sphere PSNR over materials (dB), worst "
+      "material in brackets.\n\n" +
+      table.str() + "\nPer material (sphere mean dB per rung; (c): validation's choice):\n\n" +
+      header + "\n" + rule + "\n" + detail.str();
+  std::printf("\n%s\nwall time %.1f s\n", text.c_str(), wall);
+  std::filesystem::create_directories(a.docs / "figures");
+  WriteFileAtomically(a.docs / (a.name + ".md"), text);
+  WriteFileAtomically(
+      a.docs / "figures" / (a.name + ".svg"),
+      evaluate::SvgLinePlot(series, {"Mean sphere PSNR by number of designed positions",
+                                     "positions", "sphere mean PSNR (dB)", 640, 400}));
+}
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
 }
 
 }  // namespace
@@ -244,34 +410,66 @@ int main(int argc, char** argv) {
   std::string mode = "all";
   std::filesystem::path out = std::filesystem::path(BRDFRIG_SOURCE_DIR) / "docs/figures";
   int width = 800, height = 600;
-  int study_width = 400, study_height = 300;
-  std::string set = "analytic", only;
-  std::filesystem::path docs = std::filesystem::path(BRDFRIG_SOURCE_DIR) / "docs";
-  std::filesystem::path measured_dir =
-      std::filesystem::path(BRDFRIG_SOURCE_DIR) / "data/materials/nbrdf";
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
-      out = argv[++i];
-    } else if (std::strcmp(argv[i], "--size") == 0 && i + 1 < argc) {
-      std::sscanf(argv[++i], "%dx%d", &width, &height);
-    } else if (std::strcmp(argv[i], "--study-size") == 0 && i + 1 < argc) {
-      std::sscanf(argv[++i], "%dx%d", &study_width, &study_height);
-    } else if (std::strcmp(argv[i], "--set") == 0 && i + 1 < argc) {
-      set = argv[++i];
-    } else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
-      only = argv[++i];
-    } else if (std::strcmp(argv[i], "--docs") == 0 && i + 1 < argc) {
-      docs = argv[++i];
-    } else if (std::strcmp(argv[i], "--measured-dir") == 0 && i + 1 < argc) {
-      measured_dir = argv[++i];
-    } else {
-      mode = argv[i];
+  HemisphereArgs h;
+  h.docs = std::filesystem::path(BRDFRIG_SOURCE_DIR) / "docs";
+  h.measured_dir = std::filesystem::path(BRDFRIG_SOURCE_DIR) / "data/materials/nbrdf";
+  h.command = "bench_evaluate_study";
+  bool named = false;
+  for (int i = 1; i < argc; ++i) h.command += std::string(" ") + argv[i];
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const bool more = i + 1 < argc;
+      if (std::strcmp(argv[i], "--out") == 0 && more) {
+        out = argv[++i];
+      } else if (std::strcmp(argv[i], "--size") == 0 && more) {
+        std::sscanf(argv[++i], "%dx%d", &width, &height);
+      } else if (std::strcmp(argv[i], "--study-size") == 0 && more) {
+        std::sscanf(argv[++i], "%dx%d", &h.width, &h.height);
+      } else if (std::strcmp(argv[i], "--set") == 0 && more) {
+        h.set = argv[++i];
+      } else if (std::strcmp(argv[i], "--only") == 0 && more) {
+        h.only = argv[++i];
+      } else if (std::strcmp(argv[i], "--materials") == 0 && more) {
+        h.materials = SplitList(argv[++i]);
+      } else if (std::strcmp(argv[i], "--docs") == 0 && more) {
+        h.docs = argv[++i];
+      } else if (std::strcmp(argv[i], "--measured-dir") == 0 && more) {
+        h.measured_dir = argv[++i];
+      } else if (std::strcmp(argv[i], "--plan") == 0 && more) {
+        h.plan = argv[++i];
+        if (h.plan != "mirror" && h.plan != "designed") {
+          throw OptionsError("--plan " + h.plan + ": must be mirror or designed");
+        }
+      } else if (std::strcmp(argv[i], "--positions") == 0 && more) {
+        h.positions = std::stoi(argv[++i]);
+      } else if (std::strcmp(argv[i], "--counts") == 0 && more) {
+        h.counts.clear();
+        for (const std::string& c : SplitList(argv[++i])) h.counts.push_back(std::stoi(c));
+      } else if (std::strcmp(argv[i], "--model") == 0 && more) {
+        h.model = argv[++i];
+      } else if (std::strcmp(argv[i], "--name") == 0 && more) {
+        h.name = argv[++i];
+        named = true;
+      } else if (std::strcmp(argv[i], "--albedo-goal") == 0 && more) {
+        h.albedo_goal = std::stod(argv[++i]);
+      } else if (argv[i][0] == '-') {
+        throw OptionsError(std::string("unknown option ") + argv[i]);
+      } else {
+        mode = argv[i];
+      }
     }
+    std::filesystem::create_directories(out);
+    if (mode == "photo-count" || mode == "all") PhotoCount(width, height, out);
+    if (mode == "sweep" || mode == "all") Sweep(width, height, out);
+    if (mode == "materials" || mode == "all") Materials(width, height);
+    if (mode == "hemisphere") Hemisphere(h);
+    if (mode == "photo-count-rungs") {
+      if (!named) h.name = "photo_count_study";
+      PhotoCountRungs(h);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_evaluate_study: %s\n", e.what());
+    return 1;
   }
-  std::filesystem::create_directories(out);
-  if (mode == "photo-count" || mode == "all") PhotoCount(width, height, out);
-  if (mode == "sweep" || mode == "all") Sweep(width, height, out);
-  if (mode == "materials" || mode == "all") Materials(width, height);
-  if (mode == "hemisphere") Hemisphere(set, only, study_width, study_height, measured_dir, docs);
   return 0;
 }

@@ -83,6 +83,12 @@ int CaptureBitDepth(const sim::Scene& scene) {
 std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::Brdf& fitted,
                                            const std::vector<HeldOutView>& views,
                                            const HeldOutOptions& options) {
+  return std::move(EvaluateHeldOutEach(scene, {&fitted}, views, options).front());
+}
+
+std::vector<std::vector<HeldOutResult>> EvaluateHeldOutEach(
+    const sim::Scene& scene, const std::vector<const brdf::Brdf*>& fitted,
+    const std::vector<HeldOutView>& views, const HeldOutOptions& options) {
   options.Validate();
   double exposure = options.exposure_s;
   if (exposure == 0) {
@@ -98,13 +104,14 @@ std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::
   const int bits = CaptureBitDepth(scene);
 
   const auto context = render::CreateHeadlessContext();
-  std::vector<HeldOutResult> results;
+  std::vector<std::vector<HeldOutResult>> results(fitted.size());
   for (const HeldOutView& view : views) {
-    HeldOutResult r;
-    r.view = view;
     const sim::TrueGeometry g = truth.GeometryAt(view.positions);
     const cv::Mat true_radiance = truth.RenderRadiance(view.positions);
     cv::Mat photo = truth.Expose(true_radiance, exposure, options.frame);
+    // Code values as the photo file holds them: clamp to the sensor's range.
+    cv::min(cv::max(photo, 0.0), 1.0, photo);
+    const cv::Mat mask = SampleMask(g, scene.rig.target, 2);
     render::CaptureView capture;
     capture.target = scene.rig.target;
     capture.background_albedo = scene.background_albedo;
@@ -112,24 +119,25 @@ std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::
     capture.light = {g.light_position, brdf::Rgb::Constant(g.light_intensity)};
     capture.supersampling = scene.render.supersampling;
     capture.linear_interpolation = options.linear_interpolation;
-    const cv::Mat fitted_radiance = render::RenderCaptureView(capture, fitted);
-    cv::Mat rendering = sensor.Expose(fitted_radiance, exposure, options.frame);
-    // Code values as the photo file holds them: clamp to the sensor's range.
-    cv::min(cv::max(photo, 0.0), 1.0, photo);
-    cv::min(cv::max(rendering, 0.0), 1.0, rendering);
-    r.whole_photo = Psnr(photo, rendering, cv::Mat(), 1.0, Protocol("whole photo", bits));
-    const cv::Mat mask = SampleMask(g, scene.rig.target, 2);
-    r.sample_only = Psnr(photo, rendering, mask, 1.0, Protocol("sample only", bits));
-    const SampleFigures figures =
-        CompareSampleRadiance(true_radiance, fitted_radiance, mask, "truth");
-    r.normalized_sample = figures.normalized_sample;
-    r.relative_rmse = figures.relative_rmse;
-    r.relative_rmse_protocol = figures.relative_rmse_protocol;
-    if (options.keep_images) {
-      r.photo = photo;
-      r.rendering = rendering;
+    for (std::size_t m = 0; m < fitted.size(); ++m) {
+      HeldOutResult r;
+      r.view = view;
+      const cv::Mat fitted_radiance = render::RenderCaptureView(capture, *fitted[m]);
+      cv::Mat rendering = sensor.Expose(fitted_radiance, exposure, options.frame);
+      cv::min(cv::max(rendering, 0.0), 1.0, rendering);
+      r.whole_photo = Psnr(photo, rendering, cv::Mat(), 1.0, Protocol("whole photo", bits));
+      r.sample_only = Psnr(photo, rendering, mask, 1.0, Protocol("sample only", bits));
+      const SampleFigures figures =
+          CompareSampleRadiance(true_radiance, fitted_radiance, mask, "truth");
+      r.normalized_sample = figures.normalized_sample;
+      r.relative_rmse = figures.relative_rmse;
+      r.relative_rmse_protocol = figures.relative_rmse_protocol;
+      if (options.keep_images) {
+        r.photo = photo;
+        r.rendering = rendering;
+      }
+      results[m].push_back(std::move(r));
     }
-    results.push_back(std::move(r));
   }
   return results;
 }

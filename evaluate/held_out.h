@@ -62,6 +62,13 @@ std::vector<HeldOutResult> EvaluateHeldOut(const sim::Scene& scene, const brdf::
                                            const std::vector<HeldOutView>& views,
                                            const HeldOutOptions& options = {});
 
+// EvaluateHeldOut for several fitted models of the same truth (e.g. every rung of the model
+// ladder): each view's truth is photographed once and every model rendered against it. One
+// result list per model, in the order of `fitted`.
+std::vector<std::vector<HeldOutResult>> EvaluateHeldOutEach(
+    const sim::Scene& scene, const std::vector<const brdf::Brdf*>& fitted,
+    const std::vector<HeldOutView>& views, const HeldOutOptions& options = {});
+
 // Bits of the capture's code values (quantization effect, 8 for JPEG, else 16 for PNG/TIFF).
 int CaptureBitDepth(const sim::Scene& scene);
 

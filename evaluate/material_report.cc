@@ -91,6 +91,23 @@ MaterialFigures JudgeFit(const sim::Scene& scene, const brdf::Brdf& fitted,
   return figures;
 }
 
+std::vector<MaterialFigures> JudgeFitEach(const sim::Scene& scene,
+                                          const std::vector<const brdf::Brdf*>& fitted,
+                                          const JudgeOptions& options) {
+  options.Validate();
+  std::vector<MaterialFigures> figures;
+  for (const brdf::Brdf* f : fitted) {
+    figures.push_back(JudgeBrdf(*scene.sample.brdf, *f, options.sphere, options.brdf));
+  }
+  std::vector<double> elevations, phis;
+  for (double d : options.view_elevations_deg) elevations.push_back(Radians(d));
+  for (double d : options.view_phis_deg) phis.push_back(Radians(d));
+  std::vector<std::vector<HeldOutResult>> held =
+      EvaluateHeldOutEach(scene, fitted, ElevationViews(elevations, phis), options.held_out);
+  for (std::size_t i = 0; i < fitted.size(); ++i) figures[i].held_out = std::move(held[i]);
+  return figures;
+}
+
 MaterialFigures JudgeBrdf(const brdf::Brdf& truth, const brdf::Brdf& fitted,
                           const SphereTestOptions& sphere, const BrdfFiguresOptions& brdf) {
   MaterialFigures figures;

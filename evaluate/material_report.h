@@ -47,6 +47,12 @@ struct JudgeOptions {
 MaterialFigures JudgeFit(const sim::Scene& scene, const brdf::Brdf& fitted,
                          const JudgeOptions& options = {});
 
+// JudgeFit for several fits of the same truth (every rung of the model ladder): the held-out
+// truth is photographed once per view. One MaterialFigures per fit, in order.
+std::vector<MaterialFigures> JudgeFitEach(const sim::Scene& scene,
+                                          const std::vector<const brdf::Brdf*>& fitted,
+                                          const JudgeOptions& options = {});
+
 // Sphere test and BRDF figures (the CPU part; held-out views need the simulator and GL).
 MaterialFigures JudgeBrdf(const brdf::Brdf& truth, const brdf::Brdf& fitted,
                           const SphereTestOptions& sphere = {},

@@ -1,15 +1,18 @@
 #include "jobs/material_study.h"
-#include "common/angles.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
+#include "common/angles.h"
 #include "common/error.h"
 #include "common/format.h"
+#include "coverage/designer.h"
 #include "evaluate/svg_plot.h"
+#include "sim/scene.h"
 
 namespace brdfrig::jobs {
 namespace {
@@ -20,6 +23,24 @@ double Mean(const std::vector<double>& v) {
   double sum = 0;
   for (double x : v) sum += x;
   return v.empty() ? 0 : sum / static_cast<double>(v.size());
+}
+
+// The headline figures of one judged fit.
+void Headline(const evaluate::MaterialFigures& f, double* sphere_mean, double* sphere_worst,
+              double* held_mean, double* held_min, double* albedo) {
+  *sphere_mean = f.sphere.mean_psnr_db;
+  *sphere_worst = f.sphere.worst_psnr_db;
+  *held_mean = 0;
+  *held_min = std::numeric_limits<double>::infinity();
+  for (const evaluate::HeldOutResult& v : f.held_out) {
+    *held_mean += v.normalized_sample.psnr_db / static_cast<double>(f.held_out.size());
+    *held_min = std::min(*held_min, v.normalized_sample.psnr_db);
+  }
+  if (f.held_out.empty()) *held_mean = *held_min = NAN;
+  *albedo = 0;
+  for (const evaluate::AlbedoAtAngle& a : f.brdf.albedo) {
+    if (a.theta_in_deg <= 75) *albedo = std::max(*albedo, a.relative_error);
+  }
 }
 
 }  // namespace
@@ -66,6 +87,19 @@ StudyPlan MirrorPlan() {
   return plan;
 }
 
+StudyPlan DesignedPlan(int count, const fs::path& scene) {
+  const fs::path base =
+      scene.empty() ? fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml" : scene;
+  const sim::Scene loaded = sim::LoadScene(base);
+  coverage::DesignOptions options;
+  options.count = count;
+  const coverage::PlanDesign design = coverage::DesignPlan(loaded.rig, options);
+  StudyPlan plan{"designed (" + std::to_string(count) + " positions, coverage::DesignPlan, " +
+                     Fixed(100 * design.covered_fraction, 1) + " % of (θh, θd) cells)",
+                 design.Positions()};
+  return plan;
+}
+
 void MaterialStudyOptions::Validate() const {
   if (width < 64 || height < 48) {
     throw OptionsError("material study: resolution " + std::to_string(width) + "x" +
@@ -76,6 +110,7 @@ void MaterialStudyOptions::Validate() const {
                        " must be >= 1");
   }
   if (work_dir.empty()) throw OptionsError("material study: work_dir is empty");
+  if (!model.empty()) (void)brdf::ParseModelKind(model);  // throws for an unknown kind
   judge.Validate();
 }
 
@@ -87,6 +122,20 @@ std::string MaterialStudyRow::Report() const {
       << " dB (min " << Fixed(held_out_min_db, 2) << "), albedo error "
       << Fixed(albedo_error_0_75, 3) << ", BRDF err " << Fixed(result.brdf_error, 3) << ", fit "
       << Fixed(result.reconstruct_time_s, 2) << " s";
+  for (std::size_t i = 0; i < rungs.size(); ++i) {
+    const RungRow& r = rungs[i];
+    out << "\n    " << r.kind << (r.chosen ? " [chosen]" : "")
+        << (static_cast<int>(i) == best ? " [best]" : "") << ": ";
+    if (!r.fitted) {
+      out << "not fitted: " << r.error;
+      continue;
+    }
+    out << "sphere " << Fixed(r.sphere_mean_db, 2) << " dB (worst " << Fixed(r.sphere_worst_db, 2)
+        << "), held-out " << Fixed(r.held_out_mean_db, 2) << " (min " << Fixed(r.held_out_min_db, 2)
+        << (r.held_out_worst_view.empty() ? "" : " " + r.held_out_worst_view) << "), albedo err "
+        << Fixed(r.albedo_error_0_75, 3) << ", BRDF err " << Fixed(r.brdf_error, 3) << ", "
+        << r.size_bytes << " B, fit " << Fixed(r.fit_s, 2) << " s";
+  }
   return out.str();
 }
 
@@ -104,6 +153,9 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
   s.sample_brdf = material.brdf_yaml;
   s.work_dir = options.work_dir;
   s.judge = options.judge;
+  s.model = options.model;
+  s.judge_every_rung = options.every_rung;
+  s.judge_brdf_only = options.brdf_only;
   const auto start = std::chrono::steady_clock::now();
   try {
     row.result = RunStudyPoint(s);
@@ -112,17 +164,36 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
     return row;
   }
   row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const evaluate::MaterialFigures& f = row.result.figures;
-  row.sphere_mean_db = f.sphere.mean_psnr_db;
-  row.sphere_worst_db = f.sphere.worst_psnr_db;
-  row.held_out_min_db = std::numeric_limits<double>::infinity();
-  for (const evaluate::HeldOutResult& v : f.held_out) {
-    row.held_out_mean_db += v.normalized_sample.psnr_db / static_cast<double>(f.held_out.size());
-    row.held_out_min_db = std::min(row.held_out_min_db, v.normalized_sample.psnr_db);
-  }
-  for (const evaluate::AlbedoAtAngle& a : f.brdf.albedo) {
-    if (a.theta_in_deg <= 75)
-      row.albedo_error_0_75 = std::max(row.albedo_error_0_75, a.relative_error);
+  Headline(row.result.figures, &row.sphere_mean_db, &row.sphere_worst_db, &row.held_out_mean_db,
+           &row.held_out_min_db, &row.albedo_error_0_75);
+  for (const RungFigures& r : row.result.rungs) {
+    RungRow rung;
+    rung.kind = r.kind;
+    rung.fitted = r.fitted;
+    rung.error = r.error;
+    rung.chosen = r.chosen;
+    rung.validation_score = r.validation_score;
+    rung.fit_s = r.fit_seconds;
+    rung.size_bytes = r.size_bytes;
+    if (r.fitted) {
+      Headline(r.figures, &rung.sphere_mean_db, &rung.sphere_worst_db, &rung.held_out_mean_db,
+               &rung.held_out_min_db, &rung.albedo_error_0_75);
+      rung.brdf_error = r.brdf_error;
+      for (const evaluate::HeldOutResult& v : r.figures.held_out) {
+        if (v.normalized_sample.psnr_db == rung.held_out_min_db) {
+          rung.held_out_worst_view = v.view.name;
+        }
+      }
+      for (const evaluate::SphereLight& l : r.figures.sphere.lights) {
+        if (l.psnr_db == rung.sphere_worst_db) rung.sphere_worst_light_deg = l.light_angle_deg;
+      }
+    }
+    const int index = static_cast<int>(row.rungs.size());
+    if (rung.chosen) row.chosen = index;
+    if (rung.fitted && (row.best < 0 || rung.sphere_mean_db > row.rungs[row.best].sphere_mean_db)) {
+      row.best = index;
+    }
+    row.rungs.push_back(std::move(rung));
   }
   return row;
 }
@@ -230,6 +301,147 @@ std::string MarkdownTable(const std::vector<MaterialStudyRow>& rows, const Study
       << Fixed(s.worst_held_out_min_db, 1) << " dB, albedo error " << Fixed(s.worst_albedo_error, 3)
       << ". Failed: " << s.failed << ".\n";
   return out.str();
+}
+
+RungSummary SummarizeRung(const std::vector<MaterialStudyRow>& rows, const std::string& kind,
+                          double albedo_goal) {
+  RungSummary s;
+  s.name = kind;
+  std::vector<double> sphere, held, albedo, brdf_error, size, fit;
+  s.worst_sphere_db = std::numeric_limits<double>::infinity();
+  s.worst_held_out_min_db = std::numeric_limits<double>::infinity();
+  for (const MaterialStudyRow& row : rows) {
+    if (!row.error.empty()) continue;
+    const RungRow* r = nullptr;
+    if (kind == "chosen") {
+      if (row.chosen >= 0) r = &row.rungs[row.chosen];
+    } else if (kind == "best") {
+      if (row.best >= 0) r = &row.rungs[row.best];
+    } else {
+      for (const RungRow& x : row.rungs) {
+        if (x.kind == kind) r = &x;
+      }
+    }
+    if (r == nullptr || !r->fitted) continue;
+    ++s.materials;
+    sphere.push_back(r->sphere_mean_db);
+    if (std::isfinite(r->held_out_mean_db)) held.push_back(r->held_out_mean_db);
+    albedo.push_back(r->albedo_error_0_75);
+    brdf_error.push_back(r->brdf_error);
+    size.push_back(static_cast<double>(r->size_bytes));
+    fit.push_back(r->fit_s);
+    if (r->sphere_mean_db < s.worst_sphere_db) {
+      s.worst_sphere_db = r->sphere_mean_db;
+      s.worst_sphere_material = row.material.name;
+    }
+    if (std::isfinite(r->held_out_min_db))
+      s.worst_held_out_min_db = std::min(s.worst_held_out_min_db, r->held_out_min_db);
+    if (r->albedo_error_0_75 >= s.worst_albedo_error) {
+      s.worst_albedo_error = r->albedo_error_0_75;
+      s.worst_albedo_material = row.material.name;
+    }
+    if (r->albedo_error_0_75 <= albedo_goal) ++s.albedo_within_goal;
+  }
+  s.sphere_mean_db = Mean(sphere);
+  s.held_out_mean_db = held.empty() ? NAN : Mean(held);
+  if (held.empty()) s.worst_held_out_min_db = NAN;
+  s.albedo_error_mean = Mean(albedo);
+  s.brdf_error_mean = Mean(brdf_error);
+  s.size_bytes_mean = Mean(size);
+  s.fit_s_mean = Mean(fit);
+  return s;
+}
+
+std::string LadderMarkdown(const std::vector<MaterialStudyRow>& rows, const StudyPlan& plan,
+                           double albedo_goal) {
+  std::ostringstream out;
+  out << "Plan: " << plan.name << " (" << plan.positions.size() << " positions).\n\n";
+  out << "| material | rung | sphere mean (dB) | sphere worst light (dB @ light) | held-out mean "
+         "(dB) | held-out min (dB) | albedo err 0–75° | BRDF err | size (B) | fit (s) | "
+         "validation score |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<std::string> kinds;
+  for (const MaterialStudyRow& row : rows) {
+    if (!row.error.empty()) {
+      out << "| " << row.material.name << " | failed: " << row.error << " | | | | | | | | | |\n";
+      continue;
+    }
+    for (std::size_t i = 0; i < row.rungs.size(); ++i) {
+      const RungRow& r = row.rungs[i];
+      if (std::find(kinds.begin(), kinds.end(), r.kind) == kinds.end()) kinds.push_back(r.kind);
+      std::string mark;
+      if (r.chosen) mark += " (chosen)";
+      if (static_cast<int>(i) == row.best) mark += " **(best)**";
+      out << "| " << (i == 0 ? row.material.name : "") << " | " << r.kind << mark << " |";
+      if (!r.fitted) {
+        out << " not fitted: " << r.error << " | | | | | | | | |\n";
+        continue;
+      }
+      out << " " << Fixed(r.sphere_mean_db, 1) << " | " << Fixed(r.sphere_worst_db, 1) << " @ "
+          << Fixed(r.sphere_worst_light_deg, 0) << "° | " << Fixed(r.held_out_mean_db, 1) << " | "
+          << Fixed(r.held_out_min_db, 1)
+          << (r.held_out_worst_view.empty() ? "" : " @ " + r.held_out_worst_view) << " | "
+          << Fixed(r.albedo_error_0_75, 3) << " | " << Fixed(r.brdf_error, 3) << " | "
+          << r.size_bytes << " | " << Fixed(r.fit_s, 2) << " | " << Fixed(r.validation_score, 4)
+          << " |\n";
+    }
+  }
+  out << "\nSummary over materials (mean; worst material beside it). Albedo goal: relative "
+         "error ≤ "
+      << Fixed(albedo_goal, 2) << ".\n\n";
+  out << "| rung | materials | sphere mean (dB) | worst sphere (dB, material) | held-out mean (dB) "
+         "| held-out min over views (dB) | albedo err mean | worst albedo err (material) | "
+         "albedo within goal | BRDF err mean | size mean (B) | fit mean (s) |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  kinds.push_back("chosen");
+  kinds.push_back("best");
+  for (const std::string& kind : kinds) {
+    const RungSummary s = SummarizeRung(rows, kind, albedo_goal);
+    const std::string name = kind == "chosen" ? "**validation-chosen**"
+                             : kind == "best" ? "**best by sphere**"
+                                              : kind;
+    out << "| " << name << " | " << s.materials << " | " << Fixed(s.sphere_mean_db, 1) << " | "
+        << Fixed(s.worst_sphere_db, 1) << " (" << s.worst_sphere_material << ") | "
+        << Fixed(s.held_out_mean_db, 1) << " | " << Fixed(s.worst_held_out_min_db, 1) << " | "
+        << Fixed(s.albedo_error_mean, 3) << " | " << Fixed(s.worst_albedo_error, 3) << " ("
+        << s.worst_albedo_material << ") | " << s.albedo_within_goal << "/" << s.materials << " | "
+        << Fixed(s.brdf_error_mean, 3) << " | " << Fixed(s.size_bytes_mean, 0) << " | "
+        << Fixed(s.fit_s_mean, 2) << " |\n";
+  }
+  // Which rung validation chose and which was best, counted.
+  std::map<std::string, int> chosen, best;
+  int agree = 0, judged = 0;
+  for (const MaterialStudyRow& row : rows) {
+    if (!row.error.empty() || row.chosen < 0 || row.best < 0) continue;
+    ++judged;
+    ++chosen[row.rungs[row.chosen].kind];
+    ++best[row.rungs[row.best].kind];
+    agree += row.chosen == row.best;
+  }
+  out << "\nValidation chose:";
+  for (const auto& [k, n] : chosen) out << " " << k << " " << n << ";";
+  out << " best by sphere:";
+  for (const auto& [k, n] : best) out << " " << k << " " << n << ";";
+  out << " the same rung on " << agree << " of " << judged << " materials.\n";
+  return out.str();
+}
+
+std::string LadderPlot(const std::vector<MaterialStudyRow>& rows, const std::string& title) {
+  std::vector<evaluate::Series> series;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (const RungRow& r : rows[i].rungs) {
+      if (!r.fitted) continue;
+      auto it = std::find_if(series.begin(), series.end(),
+                             [&](const evaluate::Series& x) { return x.label == r.kind; });
+      if (it == series.end()) {
+        series.push_back({r.kind, {}, {}, false});
+        it = series.end() - 1;
+      }
+      it->x.push_back(static_cast<double>(i + 1));
+      it->y.push_back(r.sphere_mean_db);
+    }
+  }
+  return evaluate::SvgLinePlot(
+      series, {title, "material (row of the table)", "sphere mean PSNR (dB)", 720, 420});
 }
 
 std::string StudyPlot(const std::vector<MaterialStudyRow>& rows, const std::string& title) {

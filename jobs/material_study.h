@@ -35,13 +35,36 @@ struct StudyPlan {
 // Today's default: 6 mirror configurations, symmetric arms at 15°, 25°, …, 65°.
 StudyPlan MirrorPlan();
 
+// The plan designer's choice (coverage::DesignPlan, default options) of `count` fitted
+// positions for the rig of `scene` (default: sim/scenes/default.yaml); no validation positions.
+StudyPlan DesignedPlan(int count, const std::filesystem::path& scene = {});
+
 struct MaterialStudyOptions {
   std::filesystem::path scene;  // base scene (default: sim/scenes/default.yaml)
   int width = 400, height = 300;
   int supersampling = 1;
   evaluate::JudgeOptions judge;    // the figures (elevations, lights, albedo angles)
   std::filesystem::path work_dir;  // scratch; one subdirectory per material
-  void Validate() const;           // throws OptionsError
+  std::string model;  // ladder rung to force ("seed", ...); empty: every rung, chosen by validation
+  bool every_rung = false;  // judge every fitted rung (MaterialStudyRow::rungs)
+  bool brdf_only = false;   // sphere test and BRDF figures only (no held-out views, no GL)
+  void Validate() const;    // throws OptionsError
+};
+
+// One rung's headline figures (same protocols as the row's).
+struct RungRow {
+  std::string kind;
+  bool fitted = false;
+  std::string error;
+  bool chosen = false;  // validation's choice
+  double validation_score = 0;
+  double sphere_mean_db = 0, sphere_worst_db = 0, sphere_worst_light_deg = 0;
+  double held_out_mean_db = 0, held_out_min_db = 0;  // NaN with brdf_only
+  std::string held_out_worst_view;                   // the view of held_out_min_db
+  double albedo_error_0_75 = 0;
+  double brdf_error = 0;
+  double fit_s = 0;
+  std::size_t size_bytes = 0;
 };
 
 struct MaterialStudyRow {
@@ -53,7 +76,11 @@ struct MaterialStudyRow {
   double sphere_mean_db = 0, sphere_worst_db = 0;
   double held_out_mean_db = 0, held_out_min_db = 0;  // normalized sample PSNR over all views
   double albedo_error_0_75 = 0;                      // max relative error, 0°..75°
-  std::string Report() const;                        // one line
+  // With MaterialStudyOptions::every_rung: every rung (the headline figures above are the
+  // chosen rung's), the index of validation's choice and of the best rung by sphere mean.
+  std::vector<RungRow> rungs;
+  int chosen = -1, best = -1;
+  std::string Report() const;  // one line (per rung with every_rung)
 };
 
 MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const StudyPlan& plan,
@@ -74,6 +101,32 @@ MaterialStudySummary Summarize(const std::vector<MaterialStudyRow>& rows);
 
 // The per-material markdown table (one row per material, then mean and worst rows).
 std::string MarkdownTable(const std::vector<MaterialStudyRow>& rows, const StudyPlan& plan);
+
+// The rung side-by-side table: one row per material and rung (chosen: validation's choice;
+// best: highest sphere mean), then the summary per rung, for the validation-chosen rung and for
+// the best rung (mean and worst material of each figure). `albedo_goal`: the relative albedo
+// error the summary counts materials within (e.g. 0.05).
+std::string LadderMarkdown(const std::vector<MaterialStudyRow>& rows, const StudyPlan& plan,
+                           double albedo_goal);
+
+// One rung's (or the chosen / best rung's) figures summarised over materials.
+struct RungSummary {
+  std::string name;
+  int materials = 0;  // judged (rung fitted)
+  double sphere_mean_db = 0, worst_sphere_db = 0;
+  std::string worst_sphere_material;
+  double held_out_mean_db = 0, worst_held_out_min_db = 0;
+  double albedo_error_mean = 0, worst_albedo_error = 0;
+  std::string worst_albedo_material;
+  int albedo_within_goal = 0;
+  double brdf_error_mean = 0, size_bytes_mean = 0, fit_s_mean = 0;
+};
+// kind: a rung name, "chosen" or "best".
+RungSummary SummarizeRung(const std::vector<MaterialStudyRow>& rows, const std::string& kind,
+                          double albedo_goal);
+
+// SVG plot: sphere mean PSNR of every rung per material (one series per rung).
+std::string LadderPlot(const std::vector<MaterialStudyRow>& rows, const std::string& title);
 
 // SVG plot: sphere PSNR (mean and worst light) and held-out normalized sample PSNR per material.
 std::string StudyPlot(const std::vector<MaterialStudyRow>& rows, const std::string& title);

@@ -128,10 +128,56 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   for (const reconstruct::PositionReport& p : fit.positions) result.positions_used += p.used;
   const std::shared_ptr<const brdf::Brdf> fitted_model = fit.material.Model();
   const brdf::Brdf& model = *fitted_model;
+  if (s.judge && s.judge_every_rung) {
+    evaluate::JudgeOptions judge = *s.judge;
+    judge.held_out.linear_interpolation = s.linear_interpolation;
+    std::vector<std::shared_ptr<const brdf::Brdf>> models;
+    std::vector<const brdf::Brdf*> judged;
+    std::vector<std::size_t> judged_rung;
+    for (const reconstruct::RungResult& r : fit.ladder.rungs) {
+      RungFigures rung;
+      rung.kind = brdf::ModelKindName(r.kind);
+      rung.fitted = r.fitted;
+      rung.error = r.error;
+      rung.chosen = r.chosen;
+      rung.validation_score = r.score;
+      rung.fit_seconds = r.fit_seconds;
+      rung.size_bytes = r.size_bytes;
+      if (r.fitted) {
+        models.push_back(r.material.Model());
+        judged.push_back(models.back().get());
+        judged_rung.push_back(result.rungs.size());
+      }
+      result.rungs.push_back(std::move(rung));
+    }
+    std::vector<evaluate::MaterialFigures> figures;
+    if (s.judge_brdf_only) {
+      for (const brdf::Brdf* m : judged) {
+        figures.push_back(evaluate::JudgeBrdf(*scene->sample.brdf, *m, judge.sphere, judge.brdf));
+      }
+    } else {
+      figures = evaluate::JudgeFitEach(*scene, judged, judge);
+    }
+    for (std::size_t i = 0; i < judged.size(); ++i) {
+      RungFigures& rung = result.rungs[judged_rung[i]];
+      rung.figures = std::move(figures[i]);
+      rung.brdf_error = rung.figures.brdf.log_cosine_error;
+      if (rung.chosen) result.figures = rung.figures;
+    }
+    result.brdf_error = result.figures.brdf.log_cosine_error;
+    result.views = result.figures.held_out;
+    for (const evaluate::HeldOutResult& v : result.views) {
+      result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
+      result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
+    }
+    return result;
+  }
   if (s.judge) {
     evaluate::JudgeOptions judge = *s.judge;
     judge.held_out.linear_interpolation = s.linear_interpolation;
-    result.figures = evaluate::JudgeFit(*scene, model, judge);
+    result.figures = s.judge_brdf_only
+                         ? evaluate::JudgeBrdf(*scene->sample.brdf, model, judge.sphere, judge.brdf)
+                         : evaluate::JudgeFit(*scene, model, judge);
     result.brdf_error = result.figures.brdf.log_cosine_error;
     result.views = result.figures.held_out;
     for (const evaluate::HeldOutResult& v : result.views) {

@@ -40,6 +40,24 @@ struct StudySettings {
   // When set, the fit is judged with every figure (held-out views at every elevation, sphere
   // test, BRDF figures) into StudyResult::figures instead of the single-elevation views above.
   std::optional<evaluate::JudgeOptions> judge;
+  // With `judge`: judge every fitted rung of the ladder with the same figures (one capture, one
+  // reconstruction; the held-out truth photographed once per view) into StudyResult::rungs.
+  bool judge_every_rung = false;
+  // With `judge`: the CPU figures only (sphere test, BRDF figures), no held-out views.
+  bool judge_brdf_only = false;
+};
+
+// One rung of the ladder judged (StudySettings::judge_every_rung).
+struct RungFigures {
+  std::string kind;  // brdf::ModelKindName
+  bool fitted = false;
+  std::string error;            // why the rung was not fitted
+  bool chosen = false;          // the rung validation chose (the written material)
+  double validation_score = 0;  // mean held-out score of the ladder (lower is better)
+  double fit_seconds = 0;       // the rung's final fit (folds not included)
+  std::size_t size_bytes = 0;   // the model in material.json
+  evaluate::MaterialFigures figures;
+  double brdf_error = 0;  // brdf::LogCosineError
 };
 
 struct StudyResult {
@@ -51,8 +69,9 @@ struct StudyResult {
   double capture_time_s = 0;      // the rig's virtual clock: moves + exposures + downloads
   double reconstruct_time_s = 0;  // wall time of the reconstruction
   int slices = 0;
-  int positions_used = 0;   // positions measured (target found, photos usable)
-  brdf::Material material;  // the fit: its kind and every rung's validation scores (ladder)
+  int positions_used = 0;          // positions measured (target found, photos usable)
+  brdf::Material material;         // the fit: its kind and every rung's validation scores (ladder)
+  std::vector<RungFigures> rungs;  // with judge_every_rung: every rung of the ladder
   std::vector<std::string> warnings;
 };
 

@@ -51,6 +51,7 @@ TEST(StudyQuickTest, PerfectFitScoresAtTheCeilingAndTheSeedFitClearlyLowerOffSpe
   options.height = 300;
   options.judge = QuickJudge();
   options.work_dir = fs::temp_directory_path() / "brdfrig_study_quick";
+  options.model = "seed";
   const MaterialStudyRow row = RunMaterialStudyPoint({"GGX 0.2", kMaterial}, MirrorPlan(), options);
   ASSERT_TRUE(row.error.empty()) << row.error;
   const evaluate::MaterialFigures& seed = row.result.figures;
