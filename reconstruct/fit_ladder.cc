@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "common/format.h"
 #include "common/parallel.h"
+#include "reconstruct/energy.h"
 #include "reconstruct/log_loss.h"
 
 namespace brdfrig::reconstruct {
@@ -239,12 +240,27 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
       rung.score = sum / static_cast<double>(all_scores.size());
     }
   }
-  for (std::size_t r = 0; r < result.rungs.size(); ++r) {
-    const RungResult& rung = result.rungs[r];
-    if (!rung.fitted) continue;
-    if (result.chosen < 0 || rung.score < result.rungs[result.chosen].score) {
-      result.chosen = static_cast<int>(r);
+  // A model that reflects more light than it receives cannot be the default (the seed's
+  // slices are kept as the paper wrote them and may): it is chosen only when forced, or when no
+  // rung conserves energy (then the ladder says so).
+  for (RungResult& rung : result.rungs) {
+    if (rung.fitted) rung.max_albedo = MaxAlbedo(*rung.material.Model()).albedo;
+  }
+  const auto choose = [&](bool require_energy) {
+    for (std::size_t r = 0; r < result.rungs.size(); ++r) {
+      const RungResult& rung = result.rungs[r];
+      if (!rung.fitted || (require_energy && !rung.ConservesEnergy())) continue;
+      if (result.chosen < 0 || rung.score < result.rungs[result.chosen].score) {
+        result.chosen = static_cast<int>(r);
+      }
     }
+  };
+  choose(/*require_energy=*/true);
+  if (result.chosen < 0) choose(/*require_energy=*/false);
+  if (result.chosen >= 0 && !result.rungs[result.chosen].ConservesEnergy()) {
+    result.rungs[result.chosen].warnings.push_back(
+        "no rung conserves energy: the chosen model's directional albedo reaches " +
+        std::to_string(result.rungs[result.chosen].max_albedo));
   }
   if (result.chosen < 0) {
     std::string reasons;
@@ -279,7 +295,8 @@ nlohmann::json LadderResult::Json() const {
         {"lopo_folds", folds},
         {"validation_scores", validation},
         {"size_bytes", r.size_bytes},
-        {"chosen", r.chosen}};
+        {"chosen", r.chosen},
+        {"max_albedo", r.max_albedo}};
     if (!r.fitted) j["error"] = r.error;
     out.push_back(j);
   }

@@ -45,6 +45,9 @@ struct RungResult {
   std::vector<double> validation_scores;  // one per validation position
   std::size_t size_bytes = 0;             // the model in material.json (without fit/ladder json)
   bool chosen = false;
+  double max_albedo = 0;  // directional albedo's maximum over 0°–85° (fitted rungs)
+  // Energy conservation (albedo <= 1 within quadrature tolerance): required of the default.
+  bool ConservesEnergy() const { return max_albedo <= 1 + 1e-3; }
   std::vector<std::string> warnings;     // the slice rungs' fit-wide warnings
   nlohmann::json slices_from_positions;  // slice rungs
 };

@@ -102,6 +102,26 @@ TEST(FitLadderTest, EnergyIsNeverCreatedEvenWhenTheDataDo) {
   }
 }
 
+TEST(FitLadderTest, TheDefaultRungNeverCreatesEnergy) {
+  // Data that reflect more than they receive: the seed's slices follow them (they are kept as
+  // the paper wrote them), so validation alone might prefer them; the default must not.
+  brdf::MicrofacetModelParams p = GgxTruth();
+  p.f0 = brdf::Rgb(1, 1, 1);
+  p.diffuse = brdf::Rgb(0.9, 0.9, 0.9);
+  p.alpha = 0.3;
+  const brdf::MicrofacetModel truth(p);
+  const LadderResult ladder = FitLadder(Positions(truth, DesignedPatches()), {}, LadderOptions{});
+  ASSERT_GE(ladder.chosen, 0);
+  const RungResult& chosen = ladder.rungs[ladder.chosen];
+  EXPECT_TRUE(chosen.ConservesEnergy()) << brdf::ModelKindName(chosen.kind);
+  EXPECT_LE(MaxAlbedo(*chosen.material.Model()).albedo, 1.0 + 1e-3);
+  for (const RungResult& r : ladder.rungs) {
+    if (!r.fitted) continue;
+    EXPECT_NEAR(r.max_albedo, MaxAlbedo(*r.material.Model()).albedo, 1e-9);
+    EXPECT_EQ(ladder.Json()[&r - &ladder.rungs[0]]["max_albedo"].get<double>(), r.max_albedo);
+  }
+}
+
 TEST(FitLadderTest, MirrorOnlyDataFlagTheDiffuseLevelUnobserved) {
   brdf::MicrofacetModelParams p = GgxTruth();
   p.alpha = 0.05;
