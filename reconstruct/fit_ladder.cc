@@ -257,7 +257,10 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
   };
   choose(/*require_energy=*/true);
   if (result.chosen < 0) choose(/*require_energy=*/false);
-  if (result.chosen >= 0 && !result.rungs[result.chosen].ConservesEnergy()) {
+  // When a rung is forced its energy is in the ladder (max_albedo); when the choice had to fall
+  // back to a model that creates energy, say so.
+  if (options.model.empty() && result.chosen >= 0 &&
+      !result.rungs[result.chosen].ConservesEnergy()) {
     result.rungs[result.chosen].warnings.push_back(
         "no rung conserves energy: the chosen model's directional albedo reaches " +
         std::to_string(result.rungs[result.chosen].max_albedo));

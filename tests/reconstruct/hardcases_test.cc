@@ -135,7 +135,9 @@ TEST(HardCases, MissingAndCorruptPhotosSkipTheirPositionWithTheFileNamed) {
   const ReconstructionResult r = Reconstruct(capture, testing::SeedOnly());
   ExpectFinite(r.material);
   EXPECT_EQ(r.material.slices.size(), 1u);
-  ASSERT_EQ(r.warnings.size(), 2u);
+  std::string all;
+  for (const std::string& w : r.warnings) all += w + "\n";
+  ASSERT_EQ(r.warnings.size(), 2u) << all;
   EXPECT_NE(r.warnings[0].find(capture.positions[0].frames[1].file.filename().string()),
             std::string::npos)
       << r.warnings[0];
