@@ -85,6 +85,15 @@ class ScratchDir {
   bool created_parent_ = false;
 };
 
+// The study's mean whole-photo and sample-only PSNR over its held-out views.
+void AverageViews(StudyResult* result) {
+  const double n = static_cast<double>(result->views.size());
+  for (const evaluate::HeldOutResult& v : result->views) {
+    result->mean_psnr_whole += v.whole_photo.psnr_db / n;
+    result->mean_psnr_sample += v.sample_only.psnr_db / n;
+  }
+}
+
 }  // namespace
 
 StudyResult RunStudyPoint(const StudySettings& s) {
@@ -166,10 +175,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     }
     result.brdf_error = result.figures.brdf.log_cosine_error;
     result.views = result.figures.held_out;
-    for (const evaluate::HeldOutResult& v : result.views) {
-      result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
-      result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
-    }
+    AverageViews(&result);
     return result;
   }
   if (s.judge) {
@@ -180,10 +186,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
                          : evaluate::JudgeFit(*scene, model, judge);
     result.brdf_error = result.figures.brdf.log_cosine_error;
     result.views = result.figures.held_out;
-    for (const evaluate::HeldOutResult& v : result.views) {
-      result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
-      result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
-    }
+    AverageViews(&result);
     return result;
   }
   result.brdf_error = brdf::LogCosineError(*scene->sample.brdf, model);
@@ -194,10 +197,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   held_out.linear_interpolation = s.linear_interpolation;
   result.views = evaluate::EvaluateHeldOut(
       *scene, model, evaluate::OrientationViews(Radians(s.view_elevation_deg), phis), held_out);
-  for (const evaluate::HeldOutResult& v : result.views) {
-    result.mean_psnr_whole += v.whole_photo.psnr_db / static_cast<double>(result.views.size());
-    result.mean_psnr_sample += v.sample_only.psnr_db / static_cast<double>(result.views.size());
-  }
+  AverageViews(&result);
   return result;
 }
 

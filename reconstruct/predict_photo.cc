@@ -13,10 +13,8 @@ PredictedSample PredictSampleRadiance(const brdf::Brdf& material, const cv::Mat&
                                       const SampleOptions& options) {
   options.Validate();
   const geometry::Vec3 n = geometry::Vec3::UnitZ();
-  const double margin = options.edge_margin * std::min(target.cutout_width, target.cutout_height);
-  const double half_w = target.cutout_width / 2 - margin;
-  const double half_h = target.cutout_height / 2 - margin;
-  const PlaneView::Box box = view.PixelBox(half_w, half_h);
+  const SampleRegion region = SampleRegionOf(view, target, options);
+  const PlaneView::Box& box = region.box;
   const geometry::Vec3& camera = view.camera_centre();
   PredictedSample out;
   out.radiance = cv::Mat(valid.size(), CV_32FC3, cv::Scalar::all(0));
@@ -27,8 +25,7 @@ PredictedSample PredictSampleRadiance(const brdf::Brdf& material, const cv::Mat&
       const int y = box.y0 + static_cast<int>(r);
       for (int x = box.x0; x < box.x1; ++x) {
         const auto p = view.PointAt(x, y);
-        if (!p || std::abs(p->x()) > half_w || std::abs(p->y()) > half_h ||
-            !valid.at<uchar>(y, x)) {
+        if (!p || !region.Contains(*p) || !valid.at<uchar>(y, x)) {
           continue;
         }
         const double e = PointLightIrradiance(light, *p);

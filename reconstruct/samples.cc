@@ -24,15 +24,23 @@ double BrdfSamples::ThetaMax() const {
   return theta.empty() ? 0 : *std::max_element(theta.begin(), theta.end());
 }
 
+SampleRegion SampleRegionOf(const PlaneView& view, const geometry::TargetGeometry& target,
+                            const SampleOptions& options) {
+  const double margin = options.edge_margin * std::min(target.cutout_width, target.cutout_height);
+  SampleRegion region;
+  region.half_w = target.cutout_width / 2 - margin;
+  region.half_h = target.cutout_height / 2 - margin;
+  region.box = view.PixelBox(region.half_w, region.half_h);
+  return region;
+}
+
 BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
                            const geometry::Vec3& light, const Radiometry& radiometry,
                            const geometry::TargetGeometry& target, const SampleOptions& options) {
   options.Validate();
   const geometry::Vec3 n = geometry::Vec3::UnitZ();
-  const double margin = options.edge_margin * std::min(target.cutout_width, target.cutout_height);
-  const double half_w = target.cutout_width / 2 - margin;
-  const double half_h = target.cutout_height / 2 - margin;
-  const PlaneView::Box box = view.PixelBox(half_w, half_h);
+  const SampleRegion region = SampleRegionOf(view, target, options);
+  const PlaneView::Box& box = region.box;
   const geometry::Vec3& camera = view.camera_centre();
 
   BrdfSamples out;
@@ -53,7 +61,7 @@ BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const 
       double previous_theta = -1;
       for (int x = box.x0; x < box.x1; ++x) {
         const auto p = view.PointAt(x, y);
-        if (!p || std::abs(p->x()) > half_w || std::abs(p->y()) > half_h) {
+        if (!p || !region.Contains(*p)) {
           previous_theta = -1;
           continue;
         }

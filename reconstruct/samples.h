@@ -37,6 +37,19 @@ struct BrdfSamples {
   double ThetaMax() const;
 };
 
+// The part of the cut-out whose pixels become samples (the cut-out less `edge_margin` along its
+// border, |x| <= half_w, |y| <= half_h on the plane) and the pixel box covering it. Shared by
+// the sample extraction and the photo prediction so both use the very same pixels.
+struct SampleRegion {
+  double half_w = 0, half_h = 0;
+  PlaneView::Box box;
+  bool Contains(const geometry::Vec3& p) const {
+    return std::abs(p.x()) <= half_w && std::abs(p.y()) <= half_h;
+  }
+};
+SampleRegion SampleRegionOf(const PlaneView& view, const geometry::TargetGeometry& target,
+                            const SampleOptions& options);
+
 BrdfSamples ExtractSamples(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
                            const geometry::Vec3& light, const Radiometry& radiometry,
                            const geometry::TargetGeometry& target, const SampleOptions& options);
