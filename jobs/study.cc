@@ -21,43 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The base scene, loaded, with the study's changes: resolution (same field of view: the focal
-// length in pixels and the principal point follow the image size), the sample's BRDF, the
-// sensor format and the effects list. Files the changes name resolve against the base scene's
-// folder, as the scene's own do.
-sim::Scene StudyScene(const fs::path& base, const StudySettings& s) {
-  sim::Scene scene = sim::LoadScene(base);
-  if (s.width != 0) {
-    geometry::Intrinsics& k = scene.rig.intrinsics;
-    const double sx = static_cast<double>(s.width) / k.width;
-    const double sy = static_cast<double>(s.height) / k.height;
-    k.fx *= sx;
-    k.fy *= sx;
-    k.cx *= sx;
-    k.cy *= sy;
-    k.width = s.width;
-    k.height = s.height;
-  }
-  if (s.supersampling != 0) scene.render.supersampling = s.supersampling;
-  if (!s.sample_brdf.empty()) {
-    const YamlNode root = LoadYamlString("brdf: " + s.sample_brdf, "StudySettings.sample_brdf");
-    scene.sample.brdf = sim::ParseSampleBrdf(root.Required("brdf"), base.parent_path());
-  }
-  if (!s.sensor_format.empty()) {
-    const auto format = sim::PhotoFormatNamed(s.sensor_format);
-    if (!format) {
-      throw OptionsError("StudySettings.sensor_format = " + s.sensor_format +
-                         "; must be png16, tiff16 or jpeg8");
-    }
-    scene.sensor.format = *format;
-  }
-  if (!s.effects.empty()) {
-    const YamlNode root = LoadYamlString("effects: " + s.effects, "StudySettings.effects");
-    scene.effects = sim::ParseEffects(root.Required("effects"));
-  }
-  return scene;
-}
-
 // A scratch directory the study makes for itself inside work_dir (created when missing), and
 // removes again with everything in it. work_dir itself is removed only when this made it and
 // it is empty: the study never removes a directory it did not create.
@@ -95,6 +58,39 @@ void AverageViews(StudyResult* result) {
 }
 
 }  // namespace
+
+sim::Scene StudyScene(const fs::path& base, const StudySettings& s) {
+  sim::Scene scene = sim::LoadScene(base);
+  if (s.width != 0) {
+    geometry::Intrinsics& k = scene.rig.intrinsics;
+    const double sx = static_cast<double>(s.width) / k.width;
+    const double sy = static_cast<double>(s.height) / k.height;
+    k.fx *= sx;
+    k.fy *= sx;
+    k.cx *= sx;
+    k.cy *= sy;
+    k.width = s.width;
+    k.height = s.height;
+  }
+  if (s.supersampling != 0) scene.render.supersampling = s.supersampling;
+  if (!s.sample_brdf.empty()) {
+    const YamlNode root = LoadYamlString("brdf: " + s.sample_brdf, "StudySettings.sample_brdf");
+    scene.sample.brdf = sim::ParseSampleBrdf(root.Required("brdf"), base.parent_path());
+  }
+  if (!s.sensor_format.empty()) {
+    const auto format = sim::PhotoFormatNamed(s.sensor_format);
+    if (!format) {
+      throw OptionsError("StudySettings.sensor_format = " + s.sensor_format +
+                         "; must be png16, tiff16 or jpeg8");
+    }
+    scene.sensor.format = *format;
+  }
+  if (!s.effects.empty()) {
+    const YamlNode root = LoadYamlString("effects: " + s.effects, "StudySettings.effects");
+    scene.effects = sim::ParseEffects(root.Required("effects"));
+  }
+  return scene;
+}
 
 StudyResult RunStudyPoint(const StudySettings& s) {
   const fs::path base =

@@ -12,6 +12,7 @@
 #include "evaluate/held_out.h"
 #include "evaluate/material_report.h"
 #include "geometry/rig_geometry.h"
+#include "sim/scene.h"
 
 namespace brdfrig::jobs {
 
@@ -74,6 +75,12 @@ struct StudyResult {
   std::vector<RungFigures> rungs;  // with judge_every_rung: every rung of the ladder
   std::vector<std::string> warnings;
 };
+
+// The base scene, loaded, with the study's changes: resolution (same field of view: the focal
+// length in pixels and the principal point follow the image size), the sample's BRDF, the
+// sensor format and the effects list. Files the changes name resolve against the base scene's
+// folder, as the scene's own do.
+sim::Scene StudyScene(const std::filesystem::path& base, const StudySettings& settings);
 
 StudyResult RunStudyPoint(const StudySettings& settings);
 

@@ -22,10 +22,22 @@ constexpr brdf::ModelKind kLadder[] = {brdf::ModelKind::kSeed, brdf::ModelKind::
                                        brdf::ModelKind::kGgx, brdf::ModelKind::kBeckmann,
                                        brdf::ModelKind::kMicrofacet};
 
+// Every position's samples, each position weighing the same in the fit: a sample's weight is
+// its pixel count, and how many pixels a photo gives the cut-out depends on the camera's
+// distance and angle, not on how much that photo's part of the BRDF matters. Left as pixels, a
+// steep view (few pixels) counts a third of a near-normal one, and a lobe shape that does not
+// fit every photo bends towards the near-normal ones.
 std::vector<DirectionSample> Pool(const std::vector<const PositionSamples*>& positions) {
   std::vector<DirectionSample> all;
   for (const PositionSamples* p : positions) {
-    all.insert(all.end(), p->directions.samples.begin(), p->directions.samples.end());
+    double total = 0;
+    for (const DirectionSample& s : p->directions.samples) total += s.weight;
+    if (!(total > 0)) continue;
+    const double scale = 1000.0 / total;
+    for (DirectionSample s : p->directions.samples) {
+      s.weight *= scale;
+      all.push_back(s);
+    }
   }
   return all;
 }
@@ -56,38 +68,18 @@ struct FoldFits {
   std::vector<std::string> errors;
 };
 
-// The slice rungs fit one slice per position: the fold's model is the full model without the
-// held-out position's slice. Exact but for what the slices share (pooled incidence angles, the
-// A2 taken from other slices, seed_constrained's floor and energy scale), which is kept from
-// the full fit; it saves refitting every slice in every fold.
-brdf::Material DropPosition(const RungResult& full, int held_out) {
-  brdf::Material m = full.material;
-  m.slices.clear();
-  m.diagnostics.clear();
-  for (std::size_t i = 0; i < full.material.slices.size(); ++i) {
-    const nlohmann::json& from = full.slices_from_positions.at(i).at("positions");
-    if (from.size() == 1 && from[0].get<int>() == held_out) continue;
-    m.slices.push_back(full.material.slices[i]);
-  }
-  if (m.slices.empty()) throw Error("no slice left without the held-out position");
-  return m;
-}
-
+// Every rung is refitted without the held-out position, the slice rungs too: what their slices
+// share (pooled incidence angles, seed_constrained's diffuse floor and energy scale) would
+// otherwise carry the held-out photo into its own prediction, and score the slice rungs
+// better than the rungs that are refitted honestly.
 FoldFits FitAll(const std::vector<brdf::ModelKind>& kinds,
                 const std::vector<const PositionSamples*>& positions, const LadderOptions& options,
-                const std::vector<const brdf::MicrofacetModelParams*>& starts,
-                const std::vector<RungResult>& full, int held_out) {
+                const std::vector<const brdf::MicrofacetModelParams*>& starts) {
   FoldFits out;
   const brdf::MicrofacetModelParams* fold_ggx = nullptr;
   for (std::size_t r = 0; r < kinds.size(); ++r) {
     try {
       const brdf::ModelKind kind = kinds[r];
-      if (brdf::IsSliceKind(kind)) {
-        if (!full[r].fitted) throw Error(full[r].error);
-        out.materials.push_back(DropPosition(full[r], held_out));
-        out.errors.emplace_back();
-        continue;
-      }
       const brdf::MicrofacetModelParams* start =
           kind == brdf::ModelKind::kMicrofacet ? fold_ggx : starts[r];
       out.materials.push_back(FitRung(kind, positions, options, false, nullptr, start));
@@ -206,7 +198,7 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
         for (std::size_t i = 0; i < fit_positions.size(); ++i) {
           if (i != f) train.push_back(&fit_positions[i]);
         }
-        fold_fits[f] = FitAll(kinds, train, options, starts, result.rungs, fit_positions[f].index);
+        fold_fits[f] = FitAll(kinds, train, options, starts);
       }
     });
     for (std::size_t f = 0; f < fit_positions.size(); ++f) {

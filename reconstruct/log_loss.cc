@@ -6,20 +6,32 @@
 
 namespace brdfrig::reconstruct {
 
+double WeightedQuantile(std::vector<std::pair<double, double>> value_weight, double q) {
+  std::erase_if(value_weight, [](const auto& vw) { return !(vw.second > 0); });
+  if (value_weight.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(value_weight.begin(), value_weight.end());
+  double total = 0;
+  for (const auto& vw : value_weight) total += vw.second;
+  const double target = std::clamp(q, 0.0, 1.0) * total;
+  double sum = 0;
+  for (const auto& [value, weight] : value_weight) {
+    sum += weight;
+    if (sum >= target) return value;
+  }
+  return value_weight.back().first;
+}
+
 Epsilon LossEpsilon(const std::vector<DirectionSample>& samples, double fraction) {
   Epsilon eps{};
   for (int c = 0; c < 3; ++c) {
-    std::vector<double> v;
+    std::vector<std::pair<double, double>> v;
     v.reserve(samples.size());
-    for (const DirectionSample& s : samples) v.push_back(s.f[c] * s.l.z());
-    if (v.empty()) {
-      eps[c] = 1e-12;
-      continue;
+    double high = 0;
+    for (const DirectionSample& s : samples) {
+      v.emplace_back(s.f[c] * s.l.z(), LossWeight(s));
+      high = std::max(high, s.f[c] * s.l.z());
     }
-    const auto p10 = v.begin() + static_cast<long>(v.size() / 10);
-    std::nth_element(v.begin(), p10, v.end());
-    const double low = *p10;
-    const double high = *std::max_element(v.begin(), v.end());
+    const double low = WeightedQuantile(std::move(v), 0.1);
     eps[c] = low > 0 ? fraction * low : std::max(1e-6 * high, 1e-12);
   }
   return eps;

@@ -2,7 +2,8 @@
 //
 //     r = ln(eps_c + f_model · cos_i) − ln(eps_c + f_data · cos_i),   weight cos_i · cos_o · pixels
 //
-// eps_c is a fraction (1 %) of the data's 10th percentile of f·cos_i in that channel: small
+// eps_c is a fraction (1 %) of the data's 10th percentile of f·cos_i in that channel (weighted
+// by LossWeight, so it is a percentile of the measure, not of the sample count): small
 // enough that a dark channel's level is fitted in relative terms (ln(1 + f) would be an
 // absolute error there and never fit it), large enough that noise about zero does not make
 // ln explode. The weight is the cosine-weighted measure of the (l, v) pair, so a sample counts
@@ -18,6 +19,12 @@
 namespace brdfrig::reconstruct {
 
 using Epsilon = std::array<double, 3>;
+
+// The q-quantile (q in [0, 1]) of `values` where each counts with its weight (> 0; others are
+// ignored). A sample's count says little: the direction samples are pixel blocks, split finely
+// where the BRDF changes fast (the highlight) and coarsely where it is flat, so most samples
+// sit on the highlight while most of the cut-out's pixels do not. NaN when nothing has weight.
+double WeightedQuantile(std::vector<std::pair<double, double>> value_weight, double q);
 
 // eps_c from the data (never 0: a channel whose 10th percentile is <= 0 gets 1e-6 of its
 // largest value, or 1e-12).

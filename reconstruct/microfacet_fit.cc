@@ -118,17 +118,17 @@ double Median(std::vector<double> v) {
   return *mid;
 }
 
-// rho_d from the darkest tenth of the data; f0 so that the specular term matches where it
-// dominates, for a given alpha.
-std::array<double, 7> StartValues(const PreparedSet& set, brdf::Distribution d, double alpha) {
+// rho_d from the darkest tenth of the data (by measure: see WeightedQuantile), times
+// `diffuse_scale`; f0 so that the specular term matches where it dominates, for a given alpha.
+std::array<double, 7> StartValues(const PreparedSet& set, brdf::Distribution d, double alpha,
+                                  double diffuse_scale) {
   std::array<double, 7> x{};
   x[0] = std::log(alpha);
   for (int c = 0; c < 3; ++c) {
-    std::vector<double> f;
-    for (const Prepared& s : set.samples) f.push_back(s.f[c]);
-    const auto p10 = f.begin() + static_cast<long>(f.size() / 10);
-    std::nth_element(f.begin(), p10, f.end());
-    const double rho = std::clamp(M_PI * *p10, kMinDiffuse, 0.9);
+    std::vector<std::pair<double, double>> f;
+    for (const Prepared& s : set.samples) f.emplace_back(s.f[c], s.sqrt_w * s.sqrt_w);
+    const double p10 = WeightedQuantile(std::move(f), 0.1);
+    const double rho = std::clamp(M_PI * p10 * diffuse_scale, kMinDiffuse, 0.9);
     std::vector<double> ratios;
     for (const Prepared& s : set.samples) {
       const double spec = s.f[c] - rho / M_PI;
@@ -414,16 +414,19 @@ MicrofacetFit FitAnalyticMicrofacet(const std::vector<DirectionSample>& samples,
   const auto start_time = std::chrono::steady_clock::now();
   const PreparedSet set = Prepare(samples, options.epsilon_fraction);
   RequireSamples(set);
-  // A few starting roughnesses: the log loss has local minima between a sharp lobe that fits
-  // the peak and a wide one that fits the flanks.
+  // A few starting roughnesses and diffuse levels: the log loss has local minima between a
+  // sharp lobe that fits the peak and a wide one that fits the flanks, and between a diffuse
+  // level that carries the flanks and one under them.
   static constexpr double kStartAlphas[3] = {0.03, 0.1, 0.3};
-  std::array<std::array<double, 7>, 3> starts{};
+  static constexpr double kStartDiffuseScales[2] = {1.0, 0.2};
+  constexpr int kStarts = 6;
+  std::array<std::array<double, 7>, kStarts> starts{};
   double* best = nullptr;
   double best_cost = std::numeric_limits<double>::infinity();
   std::unique_ptr<ceres::Problem> best_problem;
-  for (int i = 0; i < (start ? 1 : 3); ++i) {
+  for (int i = 0; i < (start ? 1 : kStarts); ++i) {
     std::array<double, 7>& x = starts[i];
-    x = StartValues(set, distribution, kStartAlphas[i]);
+    x = StartValues(set, distribution, kStartAlphas[i % 3], kStartDiffuseScales[i / 3]);
     if (start) {
       x[0] = std::log(std::clamp(start->alpha, kMinAlpha, kMaxAlpha));
       for (int c = 0; c < 3; ++c) {

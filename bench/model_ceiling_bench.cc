@@ -1,0 +1,279 @@
+// What each microfacet rung of the ladder can reach when the data are perfect: the rung fitted
+// to noise-free samples of the true BRDF, judged by the sphere test. Two data sets per material:
+//   dense     l and v over the whole hemisphere (the model form's ceiling)
+//   designed  the directions the designed plan's photos see across the cut-out (nominal rig
+//             geometry, coverage/), f from the truth: the plan's ceiling without the capture
+//   captured  the study's simulated capture of the designed plan (400x300 px, 14-bit, noise),
+//             measured by the reconstruction's own MeasurePosition: what the rungs get
+//   geometry  the captured samples' directions with f from the truth: the capture's measured
+//             geometry (pose, light) without its radiometry
+// The gap between "designed" and "geometry" is what the measured geometry costs, between
+// "geometry" and "captured" what the measured radiance costs, between "dense" and "designed"
+// what six photos cost; "dense" is what the form can do at all. The median and spread of
+// ln(f_captured / f_truth) per position say where the radiance is biased.
+//
+//   bench_model_ceiling [--set analytic|measured|all] [--materials a,b,...] [--positions N]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "brdf/material_file.h"
+#include "common/angles.h"
+#include "common/format.h"
+#include "common/yaml_reader.h"
+#include "coverage/designer.h"
+#include "evaluate/sphere_test.h"
+#include "jobs/material_study.h"
+#include "jobs/study.h"
+#include "reconstruct/batch.h"
+#include "reconstruct/fit_ladder.h"
+#include "reconstruct/measure_position.h"
+#include "sim/sample_brdf.h"
+#include "sim/scene.h"
+#include "sim/simulate.h"
+
+namespace {
+
+using namespace brdfrig;
+namespace fs = std::filesystem;
+
+reconstruct::DirectionSample SampleOf(const brdf::Brdf& truth, const brdf::Vec3& l,
+                                      const brdf::Vec3& v) {
+  reconstruct::DirectionSample s;
+  s.l = l;
+  s.v = v;
+  const brdf::Rgb f = truth.Eval(l, v, brdf::Vec3::UnitZ());
+  for (int c = 0; c < 3; ++c) s.f[c] = f[c];
+  return s;
+}
+
+brdf::Vec3 Direction(double theta, double phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+// theta_i, theta_o in 2.5°…85° (18 steps each), relative azimuth 0…180° (13 steps).
+reconstruct::PositionSamples DenseSamples(const brdf::Brdf& truth) {
+  reconstruct::PositionSamples p;
+  for (int i = 0; i < 18; ++i) {
+    for (int o = 0; o < 18; ++o) {
+      for (int a = 0; a < 13; ++a) {
+        const double ti = Radians(2.5 + 82.5 * i / 17), to = Radians(2.5 + 82.5 * o / 17);
+        p.directions.samples.push_back(
+            SampleOf(truth, Direction(ti, M_PI), Direction(to, M_PI * a / 12)));
+      }
+    }
+  }
+  return p;
+}
+
+// 25 x 25 points over the cut-out per position, as the coverage map sees them.
+std::vector<reconstruct::PositionSamples> DesignedSamples(
+    const brdf::Brdf& truth, const geometry::RigGeometry& rig,
+    const std::vector<geometry::AxisPositions>& plan) {
+  std::vector<reconstruct::PositionSamples> out;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    reconstruct::PositionSamples p;
+    p.index = static_cast<int>(i);
+    const geometry::Vec3 camera = rig.CameraAt(plan[i]).CenterInWorld();
+    const geometry::Vec3 light = rig.LightAt(plan[i]);
+    const int n = 25;
+    for (int iy = 0; iy < n; ++iy) {
+      for (int ix = 0; ix < n; ++ix) {
+        const geometry::Vec3 x((ix / (n - 1.0) - 0.5) * rig.target.cutout_width,
+                               (iy / (n - 1.0) - 0.5) * rig.target.cutout_height, 0);
+        p.directions.samples.push_back(
+            SampleOf(truth, (light - x).normalized(), (camera - x).normalized()));
+      }
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+// The study's capture of `material` on `plan`, measured position by position.
+std::vector<reconstruct::PositionSamples> CapturedSamples(const jobs::StudyMaterial& material,
+                                                          const jobs::StudyPlan& plan,
+                                                          const fs::path& work) {
+  const fs::path base = fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml";
+  jobs::StudySettings settings;
+  settings.width = 400;
+  settings.height = 300;
+  settings.supersampling = 1;
+  settings.sample_brdf = material.brdf_yaml;
+  const auto scene = std::make_shared<const sim::Scene>(jobs::StudyScene(base, settings));
+  fs::remove_all(work);
+  sim::SimulateOptions simulate;
+  simulate.scene = base;
+  simulate.loaded_scene = scene;
+  simulate.output_dir = work;
+  simulate.write_truth = false;
+  simulate.positions = plan.positions;
+  sim::Simulate(simulate);
+  reconstruct::CaptureSet capture = reconstruct::LoadCapture(work);
+  capture.nominal = scene->rig;
+  reconstruct::MeasureOptions options;
+  reconstruct::MeasureState state;
+  std::vector<reconstruct::PositionSamples> out;
+  for (const reconstruct::CapturePosition& position : capture.positions) {
+    reconstruct::MeasuredPosition m =
+        reconstruct::MeasurePosition(position, capture.nominal, options, &state);
+    out.push_back({position.index, std::move(m.samples), std::move(m.directions), {}});
+  }
+  fs::remove_all(work);
+  return out;
+}
+
+std::vector<reconstruct::PositionSamples> WithTruth(std::vector<reconstruct::PositionSamples> p,
+                                                    const brdf::Brdf& truth) {
+  for (auto& position : p) {
+    for (auto& s : position.directions.samples) {
+      const brdf::Rgb f = truth.Eval(s.l, s.v, brdf::Vec3::UnitZ());
+      for (int c = 0; c < 3; ++c) s.f[c] = f[c];
+    }
+  }
+  return p;
+}
+
+// Per position: median of ln(f_captured / f_truth) over samples and channels, and the spread
+// (median absolute deviation).
+std::string RadianceBias(const std::vector<reconstruct::PositionSamples>& captured,
+                         const brdf::Brdf& truth) {
+  std::string out;
+  for (const auto& position : captured) {
+    std::vector<double> r;
+    for (const auto& s : position.directions.samples) {
+      const brdf::Rgb f = truth.Eval(s.l, s.v, brdf::Vec3::UnitZ());
+      for (int c = 0; c < 3; ++c) {
+        if (f[c] > 0 && s.f[c] > 0) r.push_back(std::log(s.f[c] / f[c]));
+      }
+    }
+    if (r.empty()) continue;
+    std::sort(r.begin(), r.end());
+    const double median = r[r.size() / 2];
+    std::vector<double> dev;
+    for (double x : r) dev.push_back(std::abs(x - median));
+    std::sort(dev.begin(), dev.end());
+    out += (out.empty() ? "" : ", ") + Fixed(median, 3) + "±" + Fixed(dev[dev.size() / 2], 3);
+  }
+  return out;
+}
+
+struct Cell {
+  double sphere_db = NAN, worst_db = NAN;
+};
+
+Cell Judge(brdf::ModelKind kind, const std::vector<reconstruct::PositionSamples>& positions,
+           const brdf::Brdf& truth) {
+  std::vector<const reconstruct::PositionSamples*> all;
+  for (const auto& p : positions) all.push_back(&p);
+  reconstruct::LadderOptions options;
+  try {
+    const brdf::Material m = reconstruct::FitRung(kind, all, options, false);
+    const evaluate::SphereTestResult r = evaluate::SphereTest(truth, *m.Model());
+    return {r.mean_psnr_db, r.worst_psnr_db};
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", brdf::ModelKindName(kind), e.what());
+    return {};
+  }
+}
+
+std::vector<std::string> SplitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t comma = s.find(',', start);
+    out.push_back(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string set = "all";
+  std::vector<std::string> only;
+  int count = 6;
+  for (int i = 1; i < argc; ++i) {
+    const bool more = i + 1 < argc;
+    if (std::strcmp(argv[i], "--set") == 0 && more) {
+      set = argv[++i];
+    } else if (std::strcmp(argv[i], "--materials") == 0 && more) {
+      only = SplitList(argv[++i]);
+    } else if (std::strcmp(argv[i], "--positions") == 0 && more) {
+      count = std::stoi(argv[++i]);
+    } else {
+      std::fprintf(stderr,
+                   "usage: bench_model_ceiling [--set analytic|measured|all] "
+                   "[--materials a,b] [--positions N]\n");
+      return 2;
+    }
+  }
+  const fs::path source = BRDFRIG_SOURCE_DIR;
+  std::vector<jobs::StudyMaterial> materials;
+  if (set != "measured") materials = jobs::AnalyticStudyMaterials();
+  if (set != "analytic") {
+    for (auto& m : jobs::MeasuredStudyMaterials(source / "data/materials/nbrdf")) {
+      materials.push_back(m);
+    }
+  }
+  const sim::Scene scene = sim::LoadScene(source / "sim/scenes/default.yaml");
+  const jobs::StudyPlan plan = jobs::DesignedPlan(count);
+  const brdf::ModelKind kinds[] = {brdf::ModelKind::kGgx, brdf::ModelKind::kBeckmann,
+                                   brdf::ModelKind::kMicrofacet};
+  std::printf(
+      "Sphere test mean (worst light) in dB of each rung fitted to noise-free truth "
+      "samples.\nPlan: %s\n\n| material | data |",
+      plan.name.c_str());
+  for (brdf::ModelKind k : kinds) std::printf(" %s |", brdf::ModelKindName(k));
+  std::printf("\n|---|---|---|---|---|\n");
+  constexpr int kData = 4;
+  const char* names[kData] = {"dense", "designed", "geometry", "captured"};
+  std::vector<double> sums(kData * std::size(kinds), 0.0);
+  std::vector<std::string> biases;
+  int judged = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (const jobs::StudyMaterial& material : materials) {
+    if (!only.empty() && std::find(only.begin(), only.end(), material.name) == only.end()) {
+      continue;
+    }
+    const YamlNode root = LoadYamlString("brdf: " + material.brdf_yaml, material.name);
+    const auto truth = sim::ParseSampleBrdf(root.Required("brdf"), source / "sim/scenes");
+    const auto captured =
+        CapturedSamples(material, plan, fs::temp_directory_path() / "brdfrig_model_ceiling");
+    const std::vector<reconstruct::PositionSamples> data[kData] = {
+        {DenseSamples(*truth)},
+        DesignedSamples(*truth, scene.rig, plan.positions),
+        WithTruth(captured, *truth),
+        captured};
+    for (int d = 0; d < kData; ++d) {
+      std::printf("| %s | %s |", d == 0 ? material.name.c_str() : "", names[d]);
+      for (std::size_t k = 0; k < std::size(kinds); ++k) {
+        const Cell c = Judge(kinds[k], data[d], *truth);
+        std::printf(" %s (%s) |", Fixed(c.sphere_db, 1).c_str(), Fixed(c.worst_db, 1).c_str());
+        sums[d * std::size(kinds) + k] += c.sphere_db;
+      }
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+    biases.push_back(material.name + ": " + RadianceBias(captured, *truth));
+    ++judged;
+  }
+  for (int d = 0; d < kData; ++d) {
+    std::printf("| **mean of %d** | %s |", judged, names[d]);
+    for (std::size_t k = 0; k < std::size(kinds); ++k) {
+      std::printf(" %s |", Fixed(sums[d * std::size(kinds) + k] / std::max(judged, 1), 1).c_str());
+    }
+    std::printf("\n");
+  }
+  std::printf("\nln(f_captured / f_truth) per position, median ± median absolute deviation:\n");
+  for (const std::string& b : biases) std::printf("- %s\n", b.c_str());
+  std::printf("\nwall time %.0f s\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return 0;
+}
