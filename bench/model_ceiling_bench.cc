@@ -12,8 +12,15 @@
 // what six photos cost; "dense" is what the form can do at all. The median and spread of
 // ln(f_captured / f_truth) per position say where the radiance is biased.
 //
+// With --choice: the captured data only, the whole ladder with its leave-one-position-out folds
+// (reconstruct::FitLadder), and the sphere mean each rule for turning fold scores into a choice
+// would get (mean over folds, median, mean without the worst fold), beside the oracle (the
+// best rung by sphere). How the default rule was chosen; run it before changing that rule.
+//
 //   bench_model_ceiling [--set analytic|measured|all] [--materials a,b,...] [--positions N]
+//                       [--choice]
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -162,6 +169,70 @@ std::string RadianceBias(const std::vector<reconstruct::PositionSamples>& captur
   return out;
 }
 
+// The rules for turning a rung's fold scores into one score (lower is better).
+double MeanScore(std::vector<double> v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return sum / static_cast<double>(v.size());
+}
+double MedianScore(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+double TrimmedScore(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  if (v.size() > 2) v.pop_back();
+  return MeanScore(v);
+}
+
+// One material: every rung's sphere mean and the rung each rule chooses among the rungs that
+// conserve energy. Returns the sphere mean per rule (mean, median, trimmed, oracle).
+std::array<double, 4> CompareChoices(const jobs::StudyMaterial& material,
+                                     const jobs::StudyPlan& plan, const brdf::Brdf& truth) {
+  const auto captured =
+      CapturedSamples(material, plan, fs::temp_directory_path() / "brdfrig_model_ceiling");
+  const reconstruct::LadderResult ladder =
+      reconstruct::FitLadder(captured, {}, reconstruct::LadderOptions{});
+  using Rule = double (*)(std::vector<double>);
+  const Rule rules[3] = {MeanScore, MedianScore, TrimmedScore};
+  std::array<int, 4> chosen{-1, -1, -1, -1};
+  std::array<double, 4> best_score{1e300, 1e300, 1e300, -1e300};
+  std::vector<double> sphere(ladder.rungs.size(), NAN);
+  std::printf("| %s |", material.name.c_str());
+  for (std::size_t r = 0; r < ladder.rungs.size(); ++r) {
+    const reconstruct::RungResult& rung = ladder.rungs[r];
+    if (!rung.fitted) {
+      std::printf(" failed |");
+      continue;
+    }
+    sphere[r] = evaluate::SphereTest(truth, *rung.material.Model()).mean_psnr_db;
+    std::printf(" %s (%s%s) |", Fixed(sphere[r], 1).c_str(),
+                Fixed(MeanScore(rung.fold_scores), 3).c_str(),
+                rung.ConservesEnergy() ? "" : ", creates energy");
+    if (!rung.ConservesEnergy()) continue;
+    for (int k = 0; k < 3; ++k) {
+      const double score = rules[k](rung.fold_scores);
+      if (score < best_score[k]) {
+        best_score[k] = score;
+        chosen[k] = static_cast<int>(r);
+      }
+    }
+    if (sphere[r] > best_score[3]) {
+      best_score[3] = sphere[r];
+      chosen[3] = static_cast<int>(r);
+    }
+  }
+  std::array<double, 4> out{};
+  for (int k = 0; k < 4; ++k) {
+    out[k] = chosen[k] >= 0 ? sphere[chosen[k]] : NAN;
+    std::printf(" %s |", chosen[k] >= 0 ? brdf::ModelKindName(ladder.rungs[chosen[k]].kind) : "-");
+  }
+  std::printf("\n");
+  std::fflush(stdout);
+  return out;
+}
+
 struct Cell {
   double sphere_db = NAN, worst_db = NAN;
 };
@@ -199,6 +270,7 @@ int main(int argc, char** argv) {
   std::string set = "all";
   std::vector<std::string> only;
   int count = 6;
+  bool choice = false;
   for (int i = 1; i < argc; ++i) {
     const bool more = i + 1 < argc;
     if (std::strcmp(argv[i], "--set") == 0 && more) {
@@ -207,10 +279,12 @@ int main(int argc, char** argv) {
       only = SplitList(argv[++i]);
     } else if (std::strcmp(argv[i], "--positions") == 0 && more) {
       count = std::stoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--choice") == 0) {
+      choice = true;
     } else {
       std::fprintf(stderr,
                    "usage: bench_model_ceiling [--set analytic|measured|all] "
-                   "[--materials a,b] [--positions N]\n");
+                   "[--materials a,b] [--positions N] [--choice]\n");
       return 2;
     }
   }
@@ -224,6 +298,30 @@ int main(int argc, char** argv) {
   }
   const sim::Scene scene = sim::LoadScene(source / "sim/scenes/default.yaml");
   const jobs::StudyPlan plan = jobs::DesignedPlan(count);
+  if (choice) {
+    std::printf(
+        "Sphere mean (dB) of every rung fitted to the captured data, (mean fold score); the "
+        "rung each rule chooses among those that conserve energy.\nPlan: %s\n\n| material "
+        "| seed | seed_constrained | ggx | beckmann | microfacet | mean rule | median rule "
+        "| trimmed rule | oracle |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        plan.name.c_str());
+    std::array<double, 4> sums{};
+    int n = 0;
+    for (const jobs::StudyMaterial& material : materials) {
+      if (!only.empty() && std::find(only.begin(), only.end(), material.name) == only.end()) {
+        continue;
+      }
+      const YamlNode root = LoadYamlString("brdf: " + material.brdf_yaml, material.name);
+      const auto truth = sim::ParseSampleBrdf(root.Required("brdf"), source / "sim/scenes");
+      const std::array<double, 4> got = CompareChoices(material, plan, *truth);
+      for (int k = 0; k < 4; ++k) sums[k] += got[k];
+      ++n;
+    }
+    std::printf("| **mean of %d** | | | | | | %s | %s | %s | %s |\n", n,
+                Fixed(sums[0] / n, 1).c_str(), Fixed(sums[1] / n, 1).c_str(),
+                Fixed(sums[2] / n, 1).c_str(), Fixed(sums[3] / n, 1).c_str());
+    return 0;
+  }
   const brdf::ModelKind kinds[] = {brdf::ModelKind::kGgx, brdf::ModelKind::kBeckmann,
                                    brdf::ModelKind::kMicrofacet};
   std::printf(
