@@ -121,9 +121,8 @@ void Daemon::Log(const std::string& line) {
 
 void Daemon::WaitIdle() {
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [&] {
-    return queue_.empty() && running_.empty() && hand_offs_running_ == 0;
-  });
+  changed_.wait(lock,
+                [&] { return queue_.empty() && running_.empty() && hand_offs_running_ == 0; });
 }
 
 void Daemon::RunnerLoop() {

@@ -79,8 +79,8 @@ CollectReport Collect(const JobDir& dir, const SchedulerView& scheduler) {
     if (active) {
       // A task running again (resubmitted) makes an earlier result stale.
       item.outcome = Outcome::kActive;
-      item.why = state->second.state + " in job " + state->second.job_id + "_" +
-                 std::to_string(m.index);
+      item.why =
+          state->second.state + " in job " + state->second.job_id + "_" + std::to_string(m.index);
     } else if (fs::exists(dir.result(m.index))) {
       const TaskResult result = ReadTaskResult(dir.result(m.index));
       item.seconds = result.item.seconds;
@@ -100,9 +100,10 @@ CollectReport Collect(const JobDir& dir, const SchedulerView& scheduler) {
                  " without writing a result";
     } else {
       item.outcome = Outcome::kNoResult;
-      item.why = "no result, and the scheduler does not know the task (never submitted, or "
-                 "ended long ago: see " +
-                 dir.logs().string() + ")";
+      item.why =
+          "no result, and the scheduler does not know the task (never submitted, or "
+          "ended long ago: see " +
+          dir.logs().string() + ")";
     }
     report.items.push_back(item);
   }

@@ -11,9 +11,7 @@ namespace fs = std::filesystem;
 
 JobDir::JobDir(const fs::path& dir) : root(fs::absolute(dir).lexically_normal()) {}
 
-fs::path JobDir::result(int index) const {
-  return results() / (std::to_string(index) + ".json");
-}
+fs::path JobDir::result(int index) const { return results() / (std::to_string(index) + ".json"); }
 
 std::vector<Submission> ReadSubmissions(const JobDir& dir) {
   std::vector<Submission> submissions;

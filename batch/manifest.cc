@@ -100,7 +100,8 @@ Manifest ReadManifest(const fs::path& file) {
     manifest.options.reconstruct.strict = r.at("strict").get<bool>();
     manifest.options.force = r.at("force").get<bool>();
     manifest.options.jobs = 1;
-    for (const json& p : root.at("up_to_date")) manifest.up_to_date.emplace_back(p.get<std::string>());
+    for (const json& p : root.at("up_to_date"))
+      manifest.up_to_date.emplace_back(p.get<std::string>());
     for (const json& item : root.at("items")) {
       ManifestItem m{item.at("index").get<int>(), item.at("capture").get<std::string>(),
                      item.at("material").get<std::string>()};

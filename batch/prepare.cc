@@ -28,8 +28,8 @@ Manifest PrepareJob(const PrepareOptions& options, const reconstruct::ProgressCa
   fs::create_directories(dir.results());
   fs::create_directories(dir.logs());
   if (!manifest.items.empty()) {
-    WriteFileAtomically(dir.script(), SbatchScript(options.sbatch, dir,
-                                                   static_cast<int>(manifest.items.size())));
+    WriteFileAtomically(dir.script(),
+                        SbatchScript(options.sbatch, dir, static_cast<int>(manifest.items.size())));
     fs::permissions(dir.script(), fs::perms::owner_exec | fs::perms::group_exec,
                     fs::perm_options::add);
   }

@@ -34,12 +34,12 @@ void SbatchOptions::Validate() const {
               "SbatchOptions.time", time,
               "a Slurm time limit: MM, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS");
   const std::size_t digits = mem_per_task.find_first_not_of(kDigits);
-  CheckOption(mem_per_task.empty() ||
-                  (digits > 0 && (digits == std::string::npos ||
-                                  (digits + 1 == mem_per_task.size() &&
-                                   OnlyChars(mem_per_task.substr(digits), "KMGT")))),
-              "SbatchOptions.mem_per_task", mem_per_task,
-              "empty (the cluster's default) or a size such as 4000 (MB) or 4G");
+  CheckOption(
+      mem_per_task.empty() || (digits > 0 && (digits == std::string::npos ||
+                                              (digits + 1 == mem_per_task.size() &&
+                                               OnlyChars(mem_per_task.substr(digits), "KMGT")))),
+      "SbatchOptions.mem_per_task", mem_per_task,
+      "empty (the cluster's default) or a size such as 4000 (MB) or 4G");
   CheckOption(cpus_per_task >= 1, "SbatchOptions.cpus_per_task", cpus_per_task, ">= 1");
   CheckOption(throttle >= 0, "SbatchOptions.throttle", throttle, ">= 0 (0 = no limit)");
 }

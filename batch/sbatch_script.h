@@ -14,9 +14,9 @@ namespace brdfrig::batch {
 struct SbatchOptions {
   std::filesystem::path brdfrig;  // absolute path of brdfrig on the cluster's nodes
   std::string job_name = "brdfrig-reconstruct";
-  std::string partition;      // empty: the cluster's default partition
+  std::string partition;         // empty: the cluster's default partition
   std::string time = "1:00:00";  // per task, Slurm's format: MM, HH:MM:SS, D-HH:MM:SS, ...
-  std::string mem_per_task;   // e.g. "4G"; empty: the cluster's default
+  std::string mem_per_task;      // e.g. "4G"; empty: the cluster's default
   int cpus_per_task = 1;
   int throttle = 0;  // at most this many tasks at once (the array's %N); 0 = no limit
   void Validate() const;

@@ -88,8 +88,8 @@ SchedulerView QueryScheduler(const std::vector<Submission>& submissions) {
   }
   std::vector<std::string> ids;
   for (const Submission& s : submissions) ids.push_back(s.job_id);
-  const ProcessResult sacct = RunProcess({"sacct", "-n", "-P", "-X", "-j", JobIdList(submissions),
-                                          "-o", "JobID,State,ExitCode"});
+  const ProcessResult sacct = RunProcess(
+      {"sacct", "-n", "-P", "-X", "-j", JobIdList(submissions), "-o", "JobID,State,ExitCode"});
   if (sacct.ok()) {
     ParseSchedulerLines(sacct.out, ids, view.tasks);
     view.source = "sacct";
@@ -102,8 +102,8 @@ SchedulerView QueryScheduler(const std::vector<Submission>& submissions) {
     view.source = "squeue";
     return view;
   }
-  view.source = "neither sacct (" + Trimmed(sacct.err) + ") nor squeue (" +
-                Trimmed(squeue.err) + ") answered";
+  view.source = "neither sacct (" + Trimmed(sacct.err) + ") nor squeue (" + Trimmed(squeue.err) +
+                ") answered";
   return view;
 }
 

@@ -17,12 +17,13 @@ Submission SubmitArray(const JobDir& dir, const std::vector<int>& indices, int t
 // What the scheduler says about one array task.
 struct TaskState {
   std::string job_id;  // the array job it belongs to
-  std::string state;   // PENDING, RUNNING, COMPLETED, FAILED, CANCELLED, TIMEOUT, OUT_OF_MEMORY, ...
+  std::string state;  // PENDING, RUNNING, COMPLETED, FAILED, CANCELLED, TIMEOUT, OUT_OF_MEMORY, ...
   std::string reason;  // squeue's reason or sacct's exit code ("0:15" = killed by signal 15)
-  bool Active() const { return state == "PENDING" || state == "RUNNING" ||
-                               state == "CONFIGURING" || state == "COMPLETING" ||
-                               state == "REQUEUED" || state == "RESIZING" ||
-                               state == "SUSPENDED"; }
+  bool Active() const {
+    return state == "PENDING" || state == "RUNNING" || state == "CONFIGURING" ||
+           state == "COMPLETING" || state == "REQUEUED" || state == "RESIZING" ||
+           state == "SUSPENDED";
+  }
 };
 
 struct SchedulerView {

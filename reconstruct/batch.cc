@@ -131,8 +131,9 @@ std::vector<BatchItem> ListBatchItems(const BatchOptions& options) {
   std::vector<BatchItem> items(captures.size());
   for (std::size_t i = 0; i < captures.size(); ++i) {
     items[i].input = captures[i];
-    const fs::path dir = to_file ? options.output.parent_path()
-                                 : (single ? options.output : options.output / captures[i].filename());
+    const fs::path dir = to_file
+                             ? options.output.parent_path()
+                             : (single ? options.output : options.output / captures[i].filename());
     items[i].material_file = to_file ? options.output : dir / "material.json";
   }
   return items;

@@ -58,8 +58,10 @@ void RegisterPrepare(CLI::App* batch) {
       ->required();
   cmd->add_option("--brdfrig", args->brdfrig,
                   "brdfrig as installed on the cluster's nodes (default: this executable)");
-  cmd->add_option("--partition", args->sbatch.partition, "Slurm partition (default: the cluster's)");
-  cmd->add_option("--time", args->sbatch.time, "Time limit per task (Slurm format, default 1:00:00)");
+  cmd->add_option("--partition", args->sbatch.partition,
+                  "Slurm partition (default: the cluster's)");
+  cmd->add_option("--time", args->sbatch.time,
+                  "Time limit per task (Slurm format, default 1:00:00)");
   cmd->add_option("--mem-per-task", args->sbatch.mem_per_task,
                   "Memory per task, e.g. 4G (default: the cluster's)");
   cmd->add_option("--cpus-per-task", args->sbatch.cpus_per_task, "CPUs per task (default 1)");
@@ -127,10 +129,11 @@ void RegisterRun(CLI::App* batch) {
     const int index = args->index >= 0 ? args->index : batch::TaskIndexFromEnvironment();
     const batch::TaskResult result = batch::RunTask(dir, index, Say);
     std::printf("%-10s %d %s -> %s (%.1f s)%s%s\n", result.item.StatusName().c_str(), index,
-                result.item.input.c_str(), result.item.material_file.c_str(),
-                result.item.seconds, result.exit_status == 1 ? ": " : "",
+                result.item.input.c_str(), result.item.material_file.c_str(), result.item.seconds,
+                result.exit_status == 1 ? ": " : "",
                 result.exit_status == 1 ? result.item.message.c_str() : "");
-    for (const std::string& d : result.item.dropped) std::printf("           dropped %s\n", d.c_str());
+    for (const std::string& d : result.item.dropped)
+      std::printf("           dropped %s\n", d.c_str());
     ExitWith(result.exit_status, "item " + std::to_string(index) + " failed");
   });
 }
@@ -178,20 +181,21 @@ void RegisterCollect(CLI::App* batch) {
     if (args->resubmit && !again.empty()) {
       PrintSubmission(batch::SubmitArray(dir, again, batch::ScriptThrottle(dir.script())));
     }
-    ExitWith(report.ExitStatus(),
-             std::to_string(report.items.size() - report.Count(batch::CollectedItem::Outcome::kSucceeded) -
-                            report.Count(batch::CollectedItem::Outcome::kPartial)) +
-                 " item(s) not done (see above)" +
-                 (args->resubmit && !again.empty() ? "; resubmitted " + batch::ArraySpec(again)
-                                                   : ""));
+    ExitWith(
+        report.ExitStatus(),
+        std::to_string(report.items.size() -
+                       report.Count(batch::CollectedItem::Outcome::kSucceeded) -
+                       report.Count(batch::CollectedItem::Outcome::kPartial)) +
+            " item(s) not done (see above)" +
+            (args->resubmit && !again.empty() ? "; resubmitted " + batch::ArraySpec(again) : ""));
   });
 }
 
 }  // namespace
 
 void RegisterBatchCommands(CLI::App& app) {
-  CLI::App* batch = app.add_subcommand(
-      "batch", "Reconstruct an archive as a Slurm job array (docs/slurm.md)");
+  CLI::App* batch =
+      app.add_subcommand("batch", "Reconstruct an archive as a Slurm job array (docs/slurm.md)");
   batch->require_subcommand(1);
   RegisterPrepare(batch);
   RegisterSubmit(batch);

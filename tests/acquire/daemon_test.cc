@@ -156,8 +156,9 @@ TEST_F(DaemonTest, PauseHoldsResumeContinuesAbortStopsAndTheSessionCanBeResumed)
 
 TEST_F(DaemonTest, CompleteSessionsAreHandedToTheConfiguredCommandAbortedOnesAreNot) {
   const fs::path handed = rig_.dir / "handed.txt";
-  config_.hand_off.command = {"/bin/sh", "-c", "printf '%s %s\\n' \"$1\" \"$2\" >> " + handed.string(),
-                              "sh", "{session}", "{name}"};
+  config_.hand_off.command = {
+      "/bin/sh", "-c",        "printf '%s %s\\n' \"$1\" \"$2\" >> " + handed.string(),
+      "sh",      "{session}", "{name}"};
   Daemon daemon(config_);
   DaemonClient client = Client();
   client.Submit("first", testing::SmallPlanYaml());
@@ -171,7 +172,8 @@ TEST_F(DaemonTest, CompleteSessionsAreHandedToTheConfiguredCommandAbortedOnesAre
   ASSERT_TRUE(fs::exists(handed));
   std::ifstream in(handed);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(text, fs::absolute(config_.data_dir / "first").lexically_normal().string() + " first\n");
+  EXPECT_EQ(text,
+            fs::absolute(config_.data_dir / "first").lexically_normal().string() + " first\n");
 }
 
 TEST(DaemonConfigTest, HandOffIsReadFromDaemonYamlAndMustNameAnAbsoluteProgramAndTheSession) {

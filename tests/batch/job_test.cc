@@ -101,7 +101,8 @@ TEST_F(JobTest, CollectSaysWhyItemsFailedAndResubmitsOnlyFailedAndResultlessOnes
   CollectReport report = Collect(dir, scheduler);
   ASSERT_EQ(report.items.size(), 2u);
   EXPECT_EQ(report.items[0].outcome, CollectedItem::Outcome::kFailed);
-  EXPECT_NE(report.items[0].why.find("archive/a/capture.json"), std::string::npos) << report.items[0].why;
+  EXPECT_NE(report.items[0].why.find("archive/a/capture.json"), std::string::npos)
+      << report.items[0].why;
   EXPECT_EQ(report.items[1].outcome, CollectedItem::Outcome::kNoResult);
   EXPECT_NE(report.items[1].why.find("job 41_1 ended CANCELLED (0:15)"), std::string::npos)
       << report.items[1].why;

@@ -27,7 +27,7 @@ namespace {
 
 // The programs the cluster and the tests need (Debian: munge, slurm-wlm, slurm-client).
 constexpr std::array<const char*, 7> kPrograms = {"munged", "slurmctld", "slurmd", "sbatch",
-                                                   "squeue", "scancel", "sinfo"};
+                                                  "squeue", "scancel",   "sinfo"};
 
 bool InPath(const std::string& program) {
   const char* path = std::getenv("PATH");
@@ -135,30 +135,31 @@ void PrivateSlurm::WriteConfiguration() {
   const fs::path d = dir_;
   std::ofstream out(conf());
   out << "ClusterName=brdfrigtest\n"
-       << "SlurmctldHost=" << host << "(127.0.0.1)\n"
-       << "SlurmctldPort=" << FreePort() << "\n"
-       << "SlurmdPort=" << FreePort() << "\n"
-       << "AuthType=auth/munge\nCredType=cred/munge\n"
-       << "AuthInfo=socket=" << (d / "munge.sock").string() << "\n"
-       << "SlurmUser=" << user << "\nSlurmdUser=" << user << "\n"
-       << "StateSaveLocation=" << (d / "ctld").string() << "\n"
-       << "SlurmdSpoolDir=" << (d / "spool").string() << "\n"
-       << "SlurmctldPidFile=" << (d / "slurmctld.pid").string() << "\n"
-       << "SlurmdPidFile=" << (d / "slurmd.pid").string() << "\n"
-       << "SlurmctldLogFile=" << (d / "slurmctld.log").string() << "\n"
-       << "SlurmdLogFile=" << (d / "slurmd.log").string() << "\n"
-       // No cgroups, no accounting daemon: what a container or a CI runner allows.
-       << "ProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\n"
-       << "JobAcctGatherType=jobacct_gather/none\n"
-       << "AccountingStorageType=accounting_storage/none\nJobCompType=jobcomp/none\n"
-       << "MpiDefault=none\nSwitchType=switch/none\nMailProg=/bin/true\n"
-       << "SchedulerType=sched/builtin\n"
-       << "SelectType=select/cons_tres\nSelectTypeParameters=CR_CPU\n"
-       << "SlurmdParameters=config_overrides\nReturnToService=2\n"
-       << "SlurmctldTimeout=30\nSlurmdTimeout=30\nMinJobAge=600\nKillWait=5\n"
-       << "NodeName=brdfrignode NodeHostname=" << host << " NodeAddr=127.0.0.1 CPUs=" << cpus_
-       << " State=UNKNOWN\n"
-       << "PartitionName=brdfrig Nodes=brdfrignode Default=YES MaxTime=INFINITE State=UP\n";
+      << "SlurmctldHost=" << host << "(127.0.0.1)\n"
+      << "SlurmctldPort=" << FreePort() << "\n"
+      << "SlurmdPort=" << FreePort() << "\n"
+      << "AuthType=auth/munge\nCredType=cred/munge\n"
+      << "AuthInfo=socket=" << (d / "munge.sock").string() << "\n"
+      << "SlurmUser=" << user << "\nSlurmdUser=" << user << "\n"
+      << "StateSaveLocation=" << (d / "ctld").string() << "\n"
+      << "SlurmdSpoolDir=" << (d / "spool").string() << "\n"
+      << "SlurmctldPidFile=" << (d / "slurmctld.pid").string() << "\n"
+      << "SlurmdPidFile=" << (d / "slurmd.pid").string() << "\n"
+      << "SlurmctldLogFile=" << (d / "slurmctld.log").string() << "\n"
+      << "SlurmdLogFile=" << (d / "slurmd.log").string()
+      << "\n"
+      // No cgroups, no accounting daemon: what a container or a CI runner allows.
+      << "ProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\n"
+      << "JobAcctGatherType=jobacct_gather/none\n"
+      << "AccountingStorageType=accounting_storage/none\nJobCompType=jobcomp/none\n"
+      << "MpiDefault=none\nSwitchType=switch/none\nMailProg=/bin/true\n"
+      << "SchedulerType=sched/builtin\n"
+      << "SelectType=select/cons_tres\nSelectTypeParameters=CR_CPU\n"
+      << "SlurmdParameters=config_overrides\nReturnToService=2\n"
+      << "SlurmctldTimeout=30\nSlurmdTimeout=30\nMinJobAge=600\nKillWait=5\n"
+      << "NodeName=brdfrignode NodeHostname=" << host << " NodeAddr=127.0.0.1 CPUs=" << cpus_
+      << " State=UNKNOWN\n"
+      << "PartitionName=brdfrig Nodes=brdfrignode Default=YES MaxTime=INFINITE State=UP\n";
 }
 
 void PrivateSlurm::StartDaemons(double timeout_s) {
@@ -169,8 +170,7 @@ void PrivateSlurm::StartDaemons(double timeout_s) {
        "--seed-file=" + (d / "munge" / "munged.seed").string()});
   Run({"slurmctld", "-f", conf().string()});
   Run({"slurmd", "-f", conf().string(), "-N", "brdfrignode"});
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   std::string state;
   while (std::chrono::steady_clock::now() < deadline) {
     const ProcessResult sinfo = RunProcess({"sinfo", "-h", "-N", "-o", "%T"});
@@ -179,8 +179,7 @@ void PrivateSlurm::StartDaemons(double timeout_s) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   throw std::runtime_error("the private Slurm node did not become idle within " +
-                           std::to_string(timeout_s) + " s (sinfo: " + state + ")\n" +
-                           LogTails());
+                           std::to_string(timeout_s) + " s (sinfo: " + state + ")\n" + LogTails());
 }
 
 std::string PrivateSlurm::LogTails() const {

@@ -30,9 +30,10 @@ TEST(ArraySpecTest, RangesCompressAndExpandBackWithTheThrottleAndBracketsIgnored
 TEST(SchedulerLinesTest, SqueueAndSacctLinesGiveEachTaskItsLatestState) {
   std::map<int, TaskState> tasks;
   // squeue -t all -o "%i|%T|%r": a finished task, a running one, pending ones as a range.
-  ParseSchedulerLines("7_0|COMPLETED|None\n7_1|CANCELLED|None\n7_[2-3%2]|PENDING|JobArrayTaskLimit\n"
-                      "9_1|RUNNING|None\n",
-                      {"7", "9"}, tasks);
+  ParseSchedulerLines(
+      "7_0|COMPLETED|None\n7_1|CANCELLED|None\n7_[2-3%2]|PENDING|JobArrayTaskLimit\n"
+      "9_1|RUNNING|None\n",
+      {"7", "9"}, tasks);
   ASSERT_EQ(tasks.size(), 4u);
   EXPECT_EQ(tasks[1].state, "RUNNING");  // the resubmission (job 9) replaces job 7's state
   EXPECT_EQ(tasks[1].job_id, "9");
@@ -58,11 +59,11 @@ TEST(SbatchScriptTest, ScriptNamesTheInstalledBinaryTheJobDirectoryAndEveryOptio
   options.throttle = 8;
   const JobDir dir("/srv/jobs/2026-11");
   const std::string script = SbatchScript(options, dir, 12);
-  for (const char* line :
-       {"#!/bin/bash\n", "#SBATCH --array=0-11%8\n", "#SBATCH --partition=lab\n",
-        "#SBATCH --time=0-02:00:00\n", "#SBATCH --mem=4G\n", "#SBATCH --cpus-per-task=2\n",
-        "#SBATCH --chdir=/srv/jobs/2026-11\n", "#SBATCH --output=/srv/jobs/2026-11/logs/%A_%a.out\n",
-        "exec '/opt/brdfrig 0.1/bin/brdfrig' batch run /srv/jobs/2026-11\n"}) {
+  for (const char* line : {"#!/bin/bash\n", "#SBATCH --array=0-11%8\n", "#SBATCH --partition=lab\n",
+                           "#SBATCH --time=0-02:00:00\n", "#SBATCH --mem=4G\n",
+                           "#SBATCH --cpus-per-task=2\n", "#SBATCH --chdir=/srv/jobs/2026-11\n",
+                           "#SBATCH --output=/srv/jobs/2026-11/logs/%A_%a.out\n",
+                           "exec '/opt/brdfrig 0.1/bin/brdfrig' batch run /srv/jobs/2026-11\n"}) {
     EXPECT_NE(script.find(line), std::string::npos) << line << "\n" << script;
   }
   const fs::path file = fs::temp_directory_path() / "sbatch_script_test.sbatch";

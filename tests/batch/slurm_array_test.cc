@@ -78,10 +78,10 @@ class SlurmArrayTest : public ::testing::Test {
   // `brdfrig batch prepare` of the archive into job directory `name`, fits into `name`_fits,
   // two tasks at a time; returns the submitted array job's id.
   static std::string PrepareAndSubmit(const std::string& name) {
-    const brdfrig::testing::CommandResult prepared = RunBrdfrig(
-        "batch prepare " + (*root_ / "archive").string() + " -o " +
-        (*root_ / (name + "_fits")).string() + " --job-dir " + (*root_ / name).string() +
-        " --throttle 2 --time 10:00 --model ggx --submit");
+    const brdfrig::testing::CommandResult prepared =
+        RunBrdfrig("batch prepare " + (*root_ / "archive").string() + " -o " +
+                   (*root_ / (name + "_fits")).string() + " --job-dir " + (*root_ / name).string() +
+                   " --throttle 2 --time 10:00 --model ggx --submit");
     EXPECT_EQ(prepared.status, 0) << prepared.output;
     const std::vector<Submission> submissions = ReadSubmissions(JobDir(*root_ / name));
     EXPECT_EQ(submissions.size(), 1u) << prepared.output;
