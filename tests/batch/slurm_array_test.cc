@@ -34,6 +34,7 @@ class SlurmArrayTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     skip_reason_ = new std::string;
+    start_error_ = new std::string;
     const std::string missing = testing::PrivateSlurm::MissingPrograms();
     if (!missing.empty()) {
       *skip_reason_ = "Slurm is not installed here (missing: " + missing +
@@ -62,7 +63,11 @@ class SlurmArrayTest : public ::testing::Test {
     std::printf("local batch of %zu sessions: %.1f s\n", kSessions.size(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     ASSERT_EQ(local.status, 0) << local.output;
-    slurm_ = testing::PrivateSlurm::Start().release();
+    try {
+      slurm_ = testing::PrivateSlurm::Start().release();
+    } catch (const std::exception& e) {
+      *start_error_ = e.what();  // installed but not running: a failure, with the logs
+    }
   }
 
   static void TearDownTestSuite() {
@@ -72,7 +77,7 @@ class SlurmArrayTest : public ::testing::Test {
 
   void SetUp() override {
     if (!skip_reason_->empty()) GTEST_SKIP() << *skip_reason_;
-    ASSERT_NE(slurm_, nullptr) << "the private Slurm did not start";
+    ASSERT_NE(slurm_, nullptr) << "the private Slurm did not start: " << *start_error_;
   }
 
   // `brdfrig batch prepare` of the archive into job directory `name`, fits into `name`_fits,
@@ -103,11 +108,13 @@ class SlurmArrayTest : public ::testing::Test {
   }
 
   static std::string* skip_reason_;
+  static std::string* start_error_;
   static fs::path* root_;
   static testing::PrivateSlurm* slurm_;
 };
 
 std::string* SlurmArrayTest::skip_reason_ = nullptr;
+std::string* SlurmArrayTest::start_error_ = nullptr;
 fs::path* SlurmArrayTest::root_ = nullptr;
 testing::PrivateSlurm* SlurmArrayTest::slurm_ = nullptr;
 
