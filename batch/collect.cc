@@ -33,6 +33,10 @@ int CollectReport::Count(Outcome outcome) const {
   return n;
 }
 
+int CollectReport::NotDone() const {
+  return Count(Outcome::kFailed) + Count(Outcome::kNoResult) + Count(Outcome::kActive);
+}
+
 std::vector<int> CollectReport::ToResubmit() const {
   std::vector<int> indices;
   for (const CollectedItem& item : items) {
@@ -44,7 +48,7 @@ std::vector<int> CollectReport::ToResubmit() const {
 }
 
 int CollectReport::ExitStatus() const {
-  if (Count(Outcome::kFailed) + Count(Outcome::kNoResult) + Count(Outcome::kActive) > 0) return 1;
+  if (NotDone() > 0) return 1;
   return Count(Outcome::kPartial) > 0 ? 3 : 0;
 }
 

@@ -29,6 +29,8 @@ struct CollectReport {
   std::vector<std::string> up_to_date;  // skipped when the job was prepared
   std::string scheduler;                // where the scheduler states came from
   int Count(CollectedItem::Outcome outcome) const;
+  // Items without a written material: failed, without a result, pending or running.
+  int NotDone() const;
   // Failed and result-less items that are not pending or running: what to submit again.
   std::vector<int> ToResubmit() const;
   // As `brdfrig reconstruct`: 0 every item complete, 3 some partial, 1 any failed, without a

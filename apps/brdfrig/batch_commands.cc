@@ -183,10 +183,7 @@ void RegisterCollect(CLI::App* batch) {
     }
     ExitWith(
         report.ExitStatus(),
-        std::to_string(report.items.size() -
-                       report.Count(batch::CollectedItem::Outcome::kSucceeded) -
-                       report.Count(batch::CollectedItem::Outcome::kPartial)) +
-            " item(s) not done (see above)" +
+        std::to_string(report.NotDone()) + " item(s) not done (see above)" +
             (args->resubmit && !again.empty() ? "; resubmitted " + batch::ArraySpec(again) : ""));
   });
 }
