@@ -43,7 +43,11 @@ Manifest MakeManifest(const reconstruct::BatchOptions& options,
   manifest.output = absolute.output;
   manifest.options = absolute;
   manifest.options.inputs.clear();
-  for (const reconstruct::BatchItem& item : reconstruct::ListBatchItems(absolute)) {
+  for (reconstruct::BatchItem item : reconstruct::ListBatchItems(absolute)) {
+    // Always <output>/<capture name>/, also for one capture (where `brdfrig reconstruct`
+    // writes into <output> itself): jobs prepared one session at a time (the daemon's
+    // hand-off) share one fits directory.
+    item.material_file = absolute.output / item.input.filename() / "material.json";
     const bool needed = reconstruct::NeedsReconstruct(item, absolute);
     if (progress) {
       progress(item.input.filename().string() + (needed ? ": to do" : ": up to date, skipped"));

@@ -41,8 +41,9 @@ struct Manifest {
   reconstruct::BatchItem Item(int index) const;
 };
 
-// Lists the captures `options.inputs` name and keeps those NeedsReconstruct says need it.
-// Paths are made absolute. `progress` hears one line per capture checked.
+// Lists the captures `options.inputs` name and keeps those NeedsReconstruct says need it, each
+// fitted into <output>/<capture name>/ (also when there is only one). Paths are made absolute.
+// `progress` hears one line per capture checked.
 Manifest MakeManifest(const reconstruct::BatchOptions& options,
                       const reconstruct::ProgressCallback& progress = {});
 

@@ -1,17 +1,22 @@
 // The sharded reconstruction on a real Slurm: a private single-node cluster (munge, slurmctld,
 // slurmd on loopback, all in a temporary directory) runs `brdfrig batch` job arrays over
 // simulated sessions. Every material.json must be byte for byte the local batch run's; a task
-// killed mid-way must be reported by collect and completed by its resubmission.
+// killed mid-way must be reported by collect and completed by its resubmission; the daemon's
+// hand-off must bring a captured session to its material unattended.
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <fstream>
 #include <thread>
 
+#include "acquire/daemon.h"
 #include "batch/job_dir.h"
 #include "common/atomic_file.h"
 #include "common/subprocess.h"
 #include "reconstruct/batch.h"
+#include "sim/devices.h"
 #include "tests/batch/private_slurm.h"
 #include "tests/common/run_brdfrig.h"
 #include "tests/reconstruct/capture_fixture.h"
@@ -166,6 +171,62 @@ TEST_F(SlurmArrayTest, CollectReportsAKilledTaskAndItsResubmissionCompletesIt) {
   EXPECT_EQ(collected.status, 0) << collected.output << slurm_->LogTails();
   EXPECT_NE(collected.output.find("3 succeeded"), std::string::npos) << collected.output;
   ExpectMaterialsAsLocal("killed_fits");
+}
+
+TEST_F(SlurmArrayTest, DaemonHandsEachCompleteSessionToTheClusterUnattended) {
+  // The acquisition daemon on a simulated rig, configured to hand each complete session to
+  // `brdfrig batch prepare ... --submit`: capture → Slurm → material.json with nobody acting.
+  const fs::path lab = *root_ / "lab";
+  fs::create_directories(lab);
+  reconstruct::testing::SceneSpec spec;
+  spec.brdf = kMaterials[0];
+  spec.width = 320;
+  spec.height = 240;
+  spec.supersampling = 2;
+  std::ofstream(lab / "scene.yaml") << reconstruct::testing::SceneYaml(spec);
+  std::ofstream(lab / "rig.yaml") << "geometry: scene.yaml\n"
+                                     "camera: {backend: sim, scene: scene.yaml}\n"
+                                     "axes:\n"
+                                     "  camera_arm: {backend: sim, scene: scene.yaml}\n"
+                                     "  light_arm: {backend: sim, scene: scene.yaml}\n"
+                                     "light: {backend: sim, scene: scene.yaml}\n";
+  sim::RegisterSimBackends();
+  acquire::DaemonConfig config;
+  config.data_dir = lab / "sessions";
+  config.rig_file = lab / "rig.yaml";
+  char socket_dir[] = "/tmp/brdfrig-sock-XXXXXX";  // sun_path holds 107 bytes
+  ASSERT_NE(::mkdtemp(socket_dir), nullptr);
+  config.socket = fs::path(socket_dir) / "d.sock";
+  config.hand_off.command = {BRDFRIG_BINARY, "batch",
+                             "prepare",      "{session}",
+                             "-o",           (lab / "fits").string(),
+                             "--job-dir",    (lab / "jobs" / "{name}").string(),
+                             "--model",      "ggx",
+                             "--submit"};
+  const std::string plan =
+      "sample: tile\npositions:\n  - {camera_arm: 25, light_arm: -25}\n"
+      "  - {camera_arm: 45, light_arm: -45}\nexposures: [0.001, 0.008, 0.0666667]\nsettle_s: 0\n";
+  {
+    acquire::Daemon daemon(config);
+    const acquire::HttpResponse submitted = daemon.Handle(
+        {"POST", "/v1/sessions", nlohmann::json{{"name", "tile-01"}, {"plan", plan}}.dump(), ""});
+    ASSERT_EQ(submitted.status, 201) << submitted.body;
+    daemon.WaitIdle();  // the capture and its hand-off (sbatch answered)
+  }
+  fs::remove_all(socket_dir);
+  const JobDir job(lab / "jobs" / "tile-01");
+  ASSERT_EQ(ReadSubmissions(job).size(), 1u) << "the daemon handed nothing to Slurm";
+  WaitFor("lab/jobs/tile-01");
+  const brdfrig::testing::CommandResult collected =
+      RunBrdfrig("batch collect " + job.root.string());
+  EXPECT_EQ(collected.status, 0) << collected.output;
+  // The same session fitted locally: the same bytes.
+  const brdfrig::testing::CommandResult local =
+      RunBrdfrig("reconstruct " + (config.data_dir / "tile-01").string() + " -o " +
+                 (lab / "local").string() + " --model ggx");
+  ASSERT_EQ(local.status, 0) << local.output;
+  EXPECT_EQ(ReadFileToString(lab / "fits" / "tile-01" / "material.json"),
+            ReadFileToString(lab / "local" / "material.json"));
 }
 
 }  // namespace
