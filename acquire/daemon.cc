@@ -108,6 +108,8 @@ Daemon::~Daemon() {
     changed_.notify_all();
   }
   runner_.join();
+  // The runner is gone: nothing adds a hand-off any more.
+  for (std::thread& hand_off : hand_offs_) hand_off.join();
   Log("stopped");
 }
 
@@ -119,7 +121,8 @@ void Daemon::Log(const std::string& line) {
 
 void Daemon::WaitIdle() {
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [&] { return queue_.empty() && running_.empty(); });
+  changed_.wait(lock,
+                [&] { return queue_.empty() && running_.empty() && hand_offs_running_ == 0; });
 }
 
 void Daemon::RunnerLoop() {
@@ -172,6 +175,9 @@ void Daemon::RunJob(const Job& job) {
       progress_ = engine.Progress();
     }
     result = "session " + job.name + ": " + summary.ToString();
+    if (summary.status == ExitStatus::kSuccess && config_.hand_off.enabled()) {
+      StartHandOff(job.name);
+    }
   } catch (const std::exception& e) {
     std::lock_guard lock(mutex_);
     engine_ = nullptr;
@@ -180,6 +186,25 @@ void Daemon::RunJob(const Job& job) {
   Log(result);
   std::lock_guard lock(mutex_);
   last_result_ = result;
+}
+
+void Daemon::StartHandOff(const std::string& name) {
+  std::lock_guard lock(mutex_);
+  ++hand_offs_running_;
+  // On a thread of its own: the next session starts while the fit is handed over (a
+  // scheduler's sbatch answers in a second, a lab's own command may take longer).
+  hand_offs_.emplace_back([this, name] {
+    std::string line;
+    try {
+      line = RunHandOff(config_.hand_off, config_.data_dir / name, name);
+    } catch (const std::exception& e) {
+      line = "session " + name + " could not be handed off: " + e.what();
+    }
+    Log(line);
+    std::lock_guard done(mutex_);
+    --hand_offs_running_;
+    changed_.notify_all();
+  });
 }
 
 bool Daemon::KnownLocked(const std::string& name) const {

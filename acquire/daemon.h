@@ -14,6 +14,8 @@
 // 404, 405, 409 (name taken, nothing running, ...), 413 (body over 1 MiB).
 //
 // On start it lists sessions a crash interrupted and, when configured, queues their resume.
+// After each session that completes it runs the configured hand-off command (capture → fit
+// unattended; acquire/hand_off.h).
 // Logs go to stderr, one line per event (journald adds the time).
 #pragma once
 
@@ -24,6 +26,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "acquire/daemon_config.h"
 #include "acquire/http_server.h"
@@ -47,7 +50,7 @@ class Daemon {
 
   int tcp_port() const { return tcp_port_; }
   const DaemonConfig& config() const { return config_; }
-  // Blocks until the queue is empty and nothing runs (for tests).
+  // Blocks until the queue is empty and nothing runs, hand-offs included (for tests).
   void WaitIdle();
 
   HttpResponse Handle(const HttpRequest& request);
@@ -67,6 +70,8 @@ class Daemon {
   bool KnownLocked(const std::string& name) const;
   void RunnerLoop();
   void RunJob(const Job& job);
+  // Runs the configured hand-off command for a completed session (acquire/hand_off.h).
+  void StartHandOff(const std::string& name);
   void Log(const std::string& line);
 
   DaemonConfig config_;
@@ -82,6 +87,8 @@ class Daemon {
   bool stopping_ = false;
   std::mutex log_mutex_;
   std::thread runner_;
+  std::vector<std::thread> hand_offs_;  // under mutex_; joined on destruction
+  int hand_offs_running_ = 0;           // under mutex_
   std::unique_ptr<HttpServer> unix_server_;
   std::unique_ptr<HttpServer> tcp_server_;
   int tcp_port_ = 0;

@@ -17,6 +17,7 @@ void DaemonConfig::Validate() const {
     throw OptionsError("daemon: the TCP listener needs a token of at least 16 characters");
   }
   run.Validate();
+  hand_off.Validate();
 }
 
 DaemonConfig LoadDaemonConfig(const fs::path& file) {
@@ -65,6 +66,21 @@ DaemonConfig LoadDaemonConfig(const fs::path& file) {
     if (auto n = retry->Optional("max_position_redos"))
       r.max_position_redos = static_cast<int>(n->InRange(n->AsInt(), 0, 100));
     retry->Finish();
+  }
+  if (auto hand_off = root.Optional("hand_off")) {
+    const YamlNode command = hand_off->Required("command");
+    if (!command.IsSequence() || command.Elements().empty()) {
+      command.Fail("expected a list: the program (absolute path) and its arguments");
+    }
+    for (const YamlNode& argument : command.Elements()) {
+      config.hand_off.command.push_back(argument.AsString());
+    }
+    try {
+      config.hand_off.Validate();
+    } catch (const OptionsError& e) {
+      command.Fail(e.what());
+    }
+    hand_off->Finish();
   }
   root.Finish();
   config.Validate();

@@ -6,11 +6,14 @@
 //   resume_interrupted: false         # on start, resume sessions a crash interrupted
 //   tcp: {port: 8765, token_file: token}  # optional loopback listener, bearer token required
 //   retry: {max_attempts: 5, initial_backoff_s: 0.5, max_backoff_s: 10}
+//   hand_off: {command: [/usr/local/bin/brdfrig, batch, prepare, "{session}", ...]}
+//                                     # run after each complete session (acquire/hand_off.h)
 #pragma once
 
 #include <filesystem>
 #include <string>
 
+#include "acquire/hand_off.h"
 #include "acquire/run_engine.h"
 
 namespace brdfrig::acquire {
@@ -23,6 +26,7 @@ struct DaemonConfig {
   int tcp_port = 0;   // 0 = no TCP listener
   std::string token;  // required on TCP (read from token_file)
   RunOptions run;
+  HandOff hand_off;
   void Validate() const;
 };
 

@@ -1,5 +1,7 @@
 #include "common/parallel.h"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <exception>
 #include <mutex>
@@ -8,7 +10,15 @@
 
 namespace brdfrig {
 
-int DefaultThreadCount() { return std::max(1u, std::thread::hardware_concurrency()); }
+int DefaultThreadCount() {
+  // The CPUs this process may run on: a Slurm task bound to its --cpus-per-task (or a
+  // `taskset`) gets that many threads, not one per core of the node.
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (::sched_getaffinity(0, sizeof allowed, &allowed) != 0) return hardware;
+  return std::clamp(CPU_COUNT(&allowed), 1, hardware);
+}
 
 void ParallelFor(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body,
                  int threads) {

@@ -7,7 +7,8 @@
 
 namespace brdfrig {
 
-// Number of worker threads used by ParallelFor (hardware concurrency, at least 1).
+// Number of worker threads used by ParallelFor: the CPUs this process is allowed to run on
+// (its affinity mask, which Slurm and taskset set), at most the hardware's, at least 1.
 int DefaultThreadCount();
 
 // Calls body(begin, end) on disjoint chunks covering [0, count). Blocks until all are done.

@@ -123,20 +123,92 @@ std::string CaptureFingerprint(const CaptureSet& capture) {
   return hash.HexDigest();
 }
 
-std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
-                                        const ProgressCallback& progress) {
+std::vector<BatchItem> ListBatchItems(const BatchOptions& options) {
   options.Validate();
   const std::vector<fs::path> captures = ExpandInputs(options.inputs);
   const bool single = captures.size() == 1;
+  const bool to_file = single && options.output.extension() == ".json";
   std::vector<BatchItem> items(captures.size());
   for (std::size_t i = 0; i < captures.size(); ++i) {
     items[i].input = captures[i];
-    const fs::path dir = single && options.output.extension() == ".json"
+    const fs::path dir = to_file
                              ? options.output.parent_path()
                              : (single ? options.output : options.output / captures[i].filename());
-    items[i].material_file =
-        single && options.output.extension() == ".json" ? options.output : dir / "material.json";
+    items[i].material_file = to_file ? options.output : dir / "material.json";
   }
+  return items;
+}
+
+namespace {
+
+std::string SoftwareName() { return std::string("brdfrig ") + BRDFRIG_VERSION; }
+
+}  // namespace
+
+bool NeedsReconstruct(const BatchItem& item, const BatchOptions& options) {
+  if (options.force) return true;
+  try {
+    const std::string fingerprint = CaptureFingerprint(LoadCapture(item.input));
+    const Existing existing = ExistingMaterial(item.material_file);
+    if (existing.fingerprint != fingerprint + "/" + SoftwareName()) return true;
+    // Under --strict an earlier partial material is a failure to report, not a skip.
+    return options.reconstruct.strict && !existing.dropped.empty();
+  } catch (const Error&) {
+    return true;  // unreadable capture: processing it reports why
+  }
+}
+
+void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
+                      const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string name = item.input.filename().string();
+  try {
+    const CaptureSet capture = LoadCapture(item.input);
+    const std::string fingerprint = CaptureFingerprint(capture);
+    const Existing existing = ExistingMaterial(item.material_file);
+    if (!options.force && existing.fingerprint == fingerprint + "/" + SoftwareName()) {
+      if (options.reconstruct.strict && !existing.dropped.empty()) {
+        throw Error("the material of an earlier run lacks " +
+                    std::to_string(existing.dropped.size()) +
+                    " position(s), refused under --strict (nothing written)");
+      }
+      item.status = BatchItem::Status::kUpToDate;
+      item.message = "up to date";
+      item.dropped = existing.dropped;
+    } else {
+      const fs::path out_dir = item.material_file.parent_path();
+      if (IsInside(out_dir, item.input)) {
+        throw Error("the output " + item.material_file.string() +
+                    " lies inside the capture: a capture's recorded data is never written to");
+      }
+      ReconstructOptions reconstruct = options.reconstruct;
+      reconstruct.hdr_dir = out_dir / "hdr";
+      fs::create_directories(out_dir);
+      ReconstructionResult result = Reconstruct(capture, reconstruct, [&](const std::string& m) {
+        if (progress) progress(name + ": " + m);
+      });
+      result.material.provenance["input_sha256"] = fingerprint;
+      // The material last: its presence (written atomically) is what marks the item done.
+      WriteFileAtomically(out_dir / "report.txt", result.Summary());
+      brdf::WriteMaterialFile(item.material_file, result.material);
+      item.status = BatchItem::Status::kDone;
+      item.ladder = result.ladder.Summary();
+      item.dropped = result.Dropped();
+      item.message = std::string(brdf::ModelKindName(result.material.kind)) +
+                     (brdf::IsSliceKind(result.material.kind)
+                          ? " (" + std::to_string(result.material.slices.size()) + " slices)"
+                          : "");
+    }
+  } catch (const Error& e) {
+    item.status = BatchItem::Status::kFailed;
+    item.message = e.what();
+  }
+  item.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
+                                        const ProgressCallback& progress) {
+  std::vector<BatchItem> items = ListBatchItems(options);
   std::mutex mutex;
   const auto say = [&](const std::string& message) {
     std::lock_guard lock(mutex);
@@ -147,52 +219,9 @@ std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
   const auto worker = [&] {
     for (std::size_t i = next++; i < items.size(); i = next++) {
       BatchItem& item = items[i];
-      const auto start = std::chrono::steady_clock::now();
-      const std::string name = item.input.filename().string();
-      try {
-        const CaptureSet capture = LoadCapture(item.input);
-        const std::string fingerprint = CaptureFingerprint(capture);
-        const std::string software = std::string("brdfrig ") + BRDFRIG_VERSION;
-        const Existing existing = ExistingMaterial(item.material_file);
-        if (!options.force && existing.fingerprint == fingerprint + "/" + software) {
-          if (options.reconstruct.strict && !existing.dropped.empty()) {
-            throw Error("the material of an earlier run lacks " +
-                        std::to_string(existing.dropped.size()) +
-                        " position(s), refused under --strict (nothing written)");
-          }
-          item.status = BatchItem::Status::kUpToDate;
-          item.message = "up to date";
-          item.dropped = existing.dropped;
-        } else {
-          const fs::path out_dir = item.material_file.parent_path();
-          if (IsInside(out_dir, item.input)) {
-            throw Error("the output " + item.material_file.string() +
-                        " lies inside the capture: a capture's recorded data is never written to");
-          }
-          ReconstructOptions reconstruct = options.reconstruct;
-          reconstruct.hdr_dir = out_dir / "hdr";
-          fs::create_directories(out_dir);
-          ReconstructionResult result = Reconstruct(
-              capture, reconstruct, [&](const std::string& m) { say(name + ": " + m); });
-          result.material.provenance["input_sha256"] = fingerprint;
-          brdf::WriteMaterialFile(item.material_file, result.material);
-          WriteFileAtomically(out_dir / "report.txt", result.Summary());
-          item.status = BatchItem::Status::kDone;
-          item.ladder = result.ladder.Summary();
-          item.dropped = result.Dropped();
-          item.message = std::string(brdf::ModelKindName(result.material.kind)) +
-                         (brdf::IsSliceKind(result.material.kind)
-                              ? " (" + std::to_string(result.material.slices.size()) + " slices)"
-                              : "");
-        }
-      } catch (const Error& e) {
-        item.status = BatchItem::Status::kFailed;
-        item.message = e.what();
-      }
-      item.seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      say("[" + std::to_string(++finished) + "/" + std::to_string(items.size()) + "] " + name +
-          ": " + item.message);
+      ProcessBatchItem(options, item, say);
+      say("[" + std::to_string(++finished) + "/" + std::to_string(items.size()) + "] " +
+          item.input.filename().string() + ": " + item.message);
     }
   };
   std::vector<std::thread> threads;

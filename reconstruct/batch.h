@@ -48,6 +48,22 @@ CaptureSet LoadCapture(const std::filesystem::path& dir);
 // SHA-256 over the capture's photo files (names and contents), hex.
 std::string CaptureFingerprint(const CaptureSet& capture);
 
+// The captures `options.inputs` name (directories of captures expanded, sorted), each with the
+// material file it gets; nothing is read or written yet. Throws FileError for an input that is
+// neither a capture nor a directory of captures.
+std::vector<BatchItem> ListBatchItems(const BatchOptions& options);
+
+// Whether ProcessBatchItem would reconstruct `item` (false: its material is up to date — same
+// software, same photos — and, under strict, complete). Hashes the capture's photos.
+bool NeedsReconstruct(const BatchItem& item, const BatchOptions& options);
+
+// One item of a batch: skipped when up to date, else reconstructed into
+// item.material_file's directory (material.json written atomically, last). Sets status,
+// message, dropped, ladder and seconds; a failure is recorded in the item, not thrown.
+void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
+                      const ProgressCallback& progress = {});
+
+// Every item of ListBatchItems through ProcessBatchItem, options.jobs at a time.
 std::vector<BatchItem> ReconstructBatch(const BatchOptions& options,
                                         const ProgressCallback& progress = {});
 

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "apps/brdfrig/acquire_commands.h"
+#include "apps/brdfrig/batch_commands.h"
 #include "apps/brdfrig/daemon_commands.h"
 #include "apps/brdfrig/evaluate_commands.h"
 #include "apps/brdfrig/reconstruct_commands.h"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   brdfrig::apps::RegisterSimCommands(app);
   brdfrig::apps::RegisterRenderCommands(app);
   brdfrig::apps::RegisterReconstructCommands(app);
+  brdfrig::apps::RegisterBatchCommands(app);
   brdfrig::apps::RegisterEvaluateCommands(app);
   brdfrig::apps::RegisterRigCommands(app);
   brdfrig::apps::RegisterAcquireCommands(app);

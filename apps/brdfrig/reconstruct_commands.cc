@@ -14,14 +14,34 @@ struct ReconstructArgs {
   std::vector<std::string> inputs;
   std::string output;
   int jobs = 2;
-  bool force = false;
-  double bin_width_deg = 0.02;
-  bool no_light_refine = false;
-  bool strict = false;
-  std::string model;
+  ReconstructFlags flags;
 };
 
 }  // namespace
+
+void AddReconstructFlags(CLI::App* cmd, ReconstructFlags& flags) {
+  cmd->add_flag("--force", flags.force, "Redo captures whose output is up to date");
+  cmd->add_option(
+      "--bin-width-deg", flags.bin_width_deg,
+      "Average samples in bins of this many degrees of theta (0 = every pixel; default 0.02)");
+  cmd->add_option("--model", flags.model,
+                  "Model kind to fit: seed, seed_constrained, microfacet, ggx, beckmann "
+                  "(default: every rung of the ladder, the best by leave-one-position-out "
+                  "validation)");
+  cmd->add_flag("--strict", flags.strict,
+                "Fail a capture (write nothing for it) when any of its positions would be "
+                "dropped; exit status 1 instead of 3");
+  cmd->add_flag("--no-light-refine", flags.no_light_refine,
+                "Keep the light from the highlight's centroid (no joint refinement)");
+}
+
+void ApplyReconstructFlags(const ReconstructFlags& flags, reconstruct::BatchOptions& options) {
+  options.force = flags.force;
+  options.reconstruct.samples.bin_width = Radians(flags.bin_width_deg);
+  options.reconstruct.light_refine.enabled = !flags.no_light_refine;
+  options.reconstruct.model = flags.model;
+  options.reconstruct.strict = flags.strict;
+}
 
 void RegisterReconstructCommands(CLI::App& app) {
   auto args = std::make_shared<ReconstructArgs>();
@@ -35,29 +55,13 @@ void RegisterReconstructCommands(CLI::App& app) {
                   "material.json (one capture) or a directory (one subdirectory per capture)")
       ->required();
   cmd->add_option("-j,--jobs", args->jobs, "Captures reconstructed at once");
-  cmd->add_flag("--force", args->force, "Redo captures whose output is up to date");
-  cmd->add_option(
-      "--bin-width-deg", args->bin_width_deg,
-      "Average samples in bins of this many degrees of theta (0 = every pixel; default 0.02)");
-  cmd->add_option("--model", args->model,
-                  "Model kind to fit: seed, seed_constrained, microfacet, ggx, beckmann "
-                  "(default: every rung of the ladder, the best by leave-one-position-out "
-                  "validation)");
-  cmd->add_flag("--strict", args->strict,
-                "Fail a capture (write nothing for it) when any of its positions would be "
-                "dropped; exit status 1 instead of 3");
-  cmd->add_flag("--no-light-refine", args->no_light_refine,
-                "Keep the light from the highlight's centroid (no joint refinement)");
+  AddReconstructFlags(cmd, args->flags);
   cmd->callback([args] {
     reconstruct::BatchOptions options;
     for (const std::string& input : args->inputs) options.inputs.emplace_back(input);
     options.output = args->output;
     options.jobs = args->jobs;
-    options.force = args->force;
-    options.reconstruct.samples.bin_width = Radians(args->bin_width_deg);
-    options.reconstruct.light_refine.enabled = !args->no_light_refine;
-    options.reconstruct.model = args->model;
-    options.reconstruct.strict = args->strict;
+    ApplyReconstructFlags(args->flags, options);
     const auto items = reconstruct::ReconstructBatch(
         options, [](const std::string& message) { std::fprintf(stderr, "%s\n", message.c_str()); });
     for (const auto& item : items) {

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <thread>
 
 #include "acquire/daemon_client.h"
@@ -151,6 +152,49 @@ TEST_F(DaemonTest, PauseHoldsResumeContinuesAbortStopsAndTheSessionCanBeResumed)
   EXPECT_TRUE(resumed.Complete());
   EXPECT_EQ(resumed.frames.size(), 16u);
   EXPECT_TRUE(VerifySession(config_.data_dir / "long").ok());
+}
+
+TEST_F(DaemonTest, CompleteSessionsAreHandedToTheConfiguredCommandAbortedOnesAreNot) {
+  const fs::path handed = rig_.dir / "handed.txt";
+  config_.hand_off.command = {
+      "/bin/sh", "-c",        "printf '%s %s\\n' \"$1\" \"$2\" >> " + handed.string(),
+      "sh",      "{session}", "{name}"};
+  Daemon daemon(config_);
+  DaemonClient client = Client();
+  client.Submit("first", testing::SmallPlanYaml());
+  daemon.WaitIdle();
+  client.Submit("long", LongPlan());
+  WaitForStatus([](const json& s) {
+    return s.contains("progress") && s["progress"]["frames_recorded"].get<int>() >= 2;
+  });
+  client.Abort("test abort");
+  daemon.WaitIdle();
+  ASSERT_TRUE(fs::exists(handed));
+  std::ifstream in(handed);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text,
+            fs::absolute(config_.data_dir / "first").lexically_normal().string() + " first\n");
+}
+
+TEST(DaemonConfigTest, HandOffIsReadFromDaemonYamlAndMustNameAnAbsoluteProgramAndTheSession) {
+  const fs::path dir = fs::temp_directory_path() / "daemon_config_hand_off";
+  fs::create_directories(dir);
+  const std::string common = "data_dir: data\nrig: rig.yaml\n";
+  std::ofstream(dir / "good.yaml")
+      << common << "hand_off:\n  command: [/usr/bin/brdfrig, batch, prepare, \"{session}\"]\n";
+  const DaemonConfig config = LoadDaemonConfig(dir / "good.yaml");
+  EXPECT_EQ(HandOffCommand(config.hand_off, "/srv/data/s1", "s1"),
+            (std::vector<std::string>{"/usr/bin/brdfrig", "batch", "prepare", "/srv/data/s1"}));
+  std::ofstream(dir / "relative.yaml") << common << "hand_off: {command: [brdfrig, \"{name}\"]}\n";
+  try {
+    LoadDaemonConfig(dir / "relative.yaml");
+    ADD_FAILURE() << "a relative program was accepted";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("relative.yaml:3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("absolute path"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "nameless.yaml") << common << "hand_off: {command: [/bin/true]}\n";
+  EXPECT_THROW(LoadDaemonConfig(dir / "nameless.yaml"), FileError);
 }
 
 TEST_F(DaemonTest, MalformedRequestsGetA4xxWithAReasonAndWriteNothing) {

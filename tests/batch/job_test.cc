@@ -1,0 +1,123 @@
+// A job directory without a scheduler: the manifest leaves out what is up to date, a task run
+// by index writes the local batch run's material and its result, and collect says what
+// succeeded, what failed and why, and which items to submit again.
+#include <gtest/gtest.h>
+
+#include "batch/collect.h"
+#include "batch/prepare.h"
+#include "batch/task.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "tests/reconstruct/capture_fixture.h"
+
+namespace brdfrig::batch {
+namespace {
+
+namespace fs = std::filesystem;
+
+class JobTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / "batch_job_test";
+    fs::remove_all(root_);
+    reconstruct::testing::SceneSpec spec;
+    spec.brdf = "{model: ggx, alpha: 0.1, f0: 0.8, diffuse: 0.1}";
+    spec.width = 320;
+    spec.height = 240;
+    spec.supersampling = 2;
+    spec.positions = "[{camera_arm: 25, light_arm: -25}, {camera_arm: 45, light_arm: -45}]";
+    fs::create_directories(root_ / "archive");
+    for (const char* name : {"a", "b"}) {
+      reconstruct::testing::SimulateCapture(root_ / "work" / name, spec);
+      fs::rename(root_ / "work" / name / "capture", root_ / "archive" / name);
+    }
+  }
+
+  reconstruct::BatchOptions Options(const fs::path& output) const {
+    reconstruct::BatchOptions options;
+    options.inputs = {root_ / "archive"};
+    options.output = output;
+    options.reconstruct.model = "ggx";
+    return options;
+  }
+
+  fs::path root_;
+};
+
+TEST_F(JobTest, ManifestSkipsUpToDateCapturesAndATaskWritesTheLocalBatchMaterial) {
+  // Capture a is fitted locally first: up to date, so the job has only b.
+  reconstruct::BatchOptions local = Options(root_ / "fits");
+  local.inputs = {root_ / "archive" / "a"};
+  local.output = root_ / "fits" / "a" / "material.json";
+  ASSERT_EQ(reconstruct::BatchExitStatus(reconstruct::ReconstructBatch(local)), 0);
+
+  PrepareOptions prepare;
+  prepare.batch = Options(root_ / "fits");
+  prepare.sbatch.brdfrig = "/usr/local/bin/brdfrig";
+  prepare.job_dir = root_ / "job";
+  const Manifest manifest = PrepareJob(prepare);
+  ASSERT_EQ(manifest.items.size(), 1u);
+  EXPECT_EQ(manifest.items[0].capture, root_ / "archive" / "b");
+  ASSERT_EQ(manifest.up_to_date.size(), 1u);
+  EXPECT_EQ(manifest.up_to_date[0], root_ / "archive" / "a");
+  EXPECT_TRUE(fs::exists(root_ / "job" / "array.sbatch"));
+  // Preparing over a job directory would mix two jobs' results.
+  EXPECT_THROW(PrepareJob(prepare), FileError);
+
+  const JobDir dir(root_ / "job");
+  EXPECT_THROW(RunTask(dir, 1), Error);  // out of range: said, nothing run
+  const TaskResult result = RunTask(dir, 0);
+  EXPECT_EQ(result.exit_status, 0) << result.item.message;
+  const TaskResult recorded = ReadTaskResult(dir.result(0));
+  EXPECT_EQ(recorded.exit_status, 0);
+  EXPECT_EQ(recorded.item.material_file, root_ / "fits" / "b" / "material.json");
+
+  // The same settings locally give the same bytes.
+  reconstruct::BatchOptions again = Options(root_ / "local");
+  ASSERT_EQ(reconstruct::BatchExitStatus(reconstruct::ReconstructBatch(again)), 0);
+  EXPECT_EQ(ReadFileToString(root_ / "fits" / "b" / "material.json"),
+            ReadFileToString(root_ / "local" / "b" / "material.json"));
+
+  const CollectReport report = Collect(dir, {});
+  EXPECT_EQ(report.ExitStatus(), 0) << report.Summary();
+  EXPECT_TRUE(report.ToResubmit().empty());
+}
+
+TEST_F(JobTest, CollectSaysWhyItemsFailedAndResubmitsOnlyFailedAndResultlessOnes) {
+  PrepareOptions prepare;
+  prepare.batch = Options(root_ / "fits");
+  prepare.sbatch.brdfrig = "/usr/local/bin/brdfrig";
+  prepare.job_dir = root_ / "job";
+  ASSERT_EQ(PrepareJob(prepare).items.size(), 2u);
+  const JobDir dir(root_ / "job");
+  // Item 0: a failed task (its capture vanished). Item 1: killed, so no result.
+  fs::rename(root_ / "archive" / "a", root_ / "a-moved");
+  const TaskResult failed = RunTask(dir, 0);
+  EXPECT_EQ(failed.exit_status, 1);
+  SchedulerView scheduler;
+  scheduler.source = "test";
+  scheduler.tasks[0] = {"41", "FAILED", "1:0"};
+  scheduler.tasks[1] = {"41", "CANCELLED", "0:15"};
+  CollectReport report = Collect(dir, scheduler);
+  ASSERT_EQ(report.items.size(), 2u);
+  EXPECT_EQ(report.items[0].outcome, CollectedItem::Outcome::kFailed);
+  EXPECT_NE(report.items[0].why.find("archive/a/capture.json"), std::string::npos)
+      << report.items[0].why;
+  EXPECT_EQ(report.items[1].outcome, CollectedItem::Outcome::kNoResult);
+  EXPECT_NE(report.items[1].why.find("job 41_1 ended CANCELLED (0:15)"), std::string::npos)
+      << report.items[1].why;
+  EXPECT_EQ(report.ToResubmit(), (std::vector<int>{0, 1}));
+  EXPECT_EQ(report.ExitStatus(), 1);
+  const std::string summary = report.Summary();
+  EXPECT_NE(summary.find("FAILED  0 "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("NO RESULT  1 "), std::string::npos) << summary;
+
+  // Resubmitted: item 1 pending again is not submitted a second time, nor counted as done.
+  scheduler.tasks[1] = {"43", "PENDING", "Priority"};
+  report = Collect(dir, scheduler);
+  EXPECT_EQ(report.items[1].outcome, CollectedItem::Outcome::kActive);
+  EXPECT_EQ(report.ToResubmit(), (std::vector<int>{0}));
+}
+
+}  // namespace
+}  // namespace brdfrig::batch
