@@ -19,6 +19,7 @@
 //
 //   bench_model_ceiling [--set analytic|measured|all] [--materials a,b,...] [--positions N]
 //                       [--choice]
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -190,8 +191,9 @@ double TrimmedScore(std::vector<double> v) {
 // conserve energy. Returns the sphere mean per rule (mean, median, trimmed, oracle).
 std::array<double, 4> CompareChoices(const jobs::StudyMaterial& material,
                                      const jobs::StudyPlan& plan, const brdf::Brdf& truth) {
-  const auto captured =
-      CapturedSamples(material, plan, fs::temp_directory_path() / "brdfrig_model_ceiling");
+  const auto captured = CapturedSamples(
+      material, plan,
+      fs::temp_directory_path() / ("brdfrig_model_ceiling." + std::to_string(getpid())));
   const reconstruct::LadderResult ladder =
       reconstruct::FitLadder(captured, {}, reconstruct::LadderOptions{});
   using Rule = double (*)(std::vector<double>);
@@ -342,8 +344,9 @@ int main(int argc, char** argv) {
     }
     const YamlNode root = LoadYamlString("brdf: " + material.brdf_yaml, material.name);
     const auto truth = sim::ParseSampleBrdf(root.Required("brdf"), source / "sim/scenes");
-    const auto captured =
-        CapturedSamples(material, plan, fs::temp_directory_path() / "brdfrig_model_ceiling");
+    const auto captured = CapturedSamples(
+        material, plan,
+        fs::temp_directory_path() / ("brdfrig_model_ceiling." + std::to_string(getpid())));
     const std::vector<reconstruct::PositionSamples> data[kData] = {
         {DenseSamples(*truth)},
         DesignedSamples(*truth, scene.rig, plan.positions),
