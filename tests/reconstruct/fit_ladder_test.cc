@@ -7,6 +7,7 @@
 
 #include "brdf/metrics.h"
 #include "reconstruct/energy.h"
+#include "reconstruct/log_loss.h"
 #include "tests/reconstruct/direction_patches.h"
 
 namespace brdfrig::reconstruct {
@@ -154,6 +155,64 @@ TEST(FitLadderTest, SeedConstrainedSharesOneMeasuredDiffuseLevel) {
     // Far from the lobe the data are the diffuse level (plus a little of GGX's tail).
     const double want = p.diffuse[c] / M_PI;
     EXPECT_NEAR(m.slices[0].channel[c].a2, want, 0.15 * want) << c;
+  }
+}
+
+}  // namespace
+}  // namespace brdfrig::reconstruct
+
+namespace brdfrig::reconstruct {
+namespace {
+
+// A photo's pixel count follows the camera, not the BRDF: giving one position's samples ten
+// times the pixels (a closer camera) must not change the fit.
+TEST(FitLadderTest, APositionsPixelCountDoesNotChangeItsWeightInTheFit) {
+  brdf::MicrofacetModelParams p = GgxTruth();
+  p.alpha = 0.2;
+  const brdf::MicrofacetModel truth(p);
+  std::vector<PositionSamples> positions = Positions(truth, DesignedPatches());
+  std::vector<PositionSamples> closer = positions;
+  for (DirectionSample& s : closer[2].directions.samples) s.weight *= 10;
+  LadderOptions options;
+  options.model = "ggx";
+  const brdf::MicrofacetModelParams a =
+      FitLadder(positions, {}, options).rungs[0].material.microfacet;
+  const brdf::MicrofacetModelParams b = FitLadder(closer, {}, options).rungs[0].material.microfacet;
+  EXPECT_NEAR(a.alpha, b.alpha, 1e-6 * a.alpha);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(a.f0[c], b.f0[c], 1e-6 * a.f0[c]);
+    EXPECT_NEAR(a.diffuse[c], b.diffuse[c], 1e-6 * a.diffuse[c] + 1e-12);
+  }
+}
+
+// Leave one position out refits every rung, the slice rungs too: what the held-out photo shows
+// cannot reach its own prediction (the slices share pooled angles, a diffuse floor and an
+// energy scale). Each fold's score is the score of the rung refitted on the other positions.
+TEST(FitLadderTest, EveryFoldIsARefitWithoutItsHeldOutPosition) {
+  const brdf::MicrofacetModel truth(GgxTruth());
+  std::vector<PositionSamples> positions = Positions(truth, DesignedPatches());
+  // A held-out photo that disagrees with the rest: had it leaked into its fold, the fold would
+  // predict it better than a refit without it does.
+  for (DirectionSample& s : positions[1].directions.samples) {
+    for (double& f : s.f) f *= 3;
+  }
+  for (auto& f : positions[1].slices.f) {
+    for (double& x : f) x *= 3;
+  }
+  const LadderResult ladder = FitLadder(positions, {}, {});
+  std::vector<const PositionSamples*> rest;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    if (i != 1) rest.push_back(&positions[i]);
+  }
+  const auto& held = positions[1].directions.samples;
+  const Epsilon eps = LossEpsilon(held, MicrofacetFitOptions{}.epsilon_fraction);
+  for (brdf::ModelKind kind : {brdf::ModelKind::kSeed, brdf::ModelKind::kSeedConstrained}) {
+    const RungResult& rung = ladder.rungs[static_cast<int>(kind == brdf::ModelKind::kSeed ? 0 : 1)];
+    ASSERT_EQ(rung.kind, kind);
+    ASSERT_EQ(rung.fold_positions[1], 1);
+    const brdf::Material refit = FitRung(kind, rest, {}, false);
+    EXPECT_DOUBLE_EQ(rung.fold_scores[1], LogLossRms(*refit.Model(), held, eps))
+        << brdf::ModelKindName(kind);
   }
 }
 
