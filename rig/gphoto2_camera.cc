@@ -1,6 +1,7 @@
 #include "rig/gphoto2_camera.h"
 
 #include <gphoto2/gphoto2.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -61,6 +62,16 @@ std::string Seconds(std::chrono::milliseconds duration) {
 
 std::string DiskPath(const std::string& port) {
   return port.rfind("disk:", 0) == 0 ? port.substr(5) : std::string();
+}
+
+bool IsNetworkPort(const std::string& port) { return port.rfind("ptpip:", 0) == 0; }
+
+// Results with which libgphoto2's PTP/IP transport reports a broken or silent link (a closed
+// socket reads as a generic error, a silent one as a timeout after 2.5 s). The session on the
+// camera cannot continue on that connection: it must be opened again.
+bool IsLinkFailure(int result) {
+  return result == GP_ERROR || result == GP_ERROR_TIMEOUT || result == GP_ERROR_IO ||
+         result == GP_ERROR_IO_READ || result == GP_ERROR_IO_WRITE || result == GP_ERROR_IO_INIT;
 }
 
 }  // namespace
@@ -153,6 +164,17 @@ int Gphoto2Camera::Run(const std::string& what, Call call) {
       backoff *= 2;
       continue;
     }
+    if (IsNetworkPort(info_.port) && (timed_out || IsLinkFailure(result))) {
+      // The PTP/IP session is out of step or gone: close it so that nothing reads a late
+      // answer as the reply to a new request, and let the owner reopen (a fresh session).
+      const std::string where = Where();
+      Close();
+      throw CameraError(CameraError::Kind::kGone, result,
+                        what + " on " + where + " lost the network connection (libgphoto2 " +
+                            std::to_string(result) + ": " + gp_result_as_string(result) +
+                            "); check that the camera is on and reachable; Reopen() "
+                            "reconnects");
+    }
     if (timed_out || result == GP_ERROR_CANCEL) {
       throw CameraError(CameraError::Kind::kTimeout, result,
                         what + " on " + Where() + " took longer than " +
@@ -170,6 +192,13 @@ void Gphoto2Camera::Open() {
 
   std::string model = options_.model;
   std::string port = options_.port;
+  if (IsNetworkPort(port)) {
+    // Network cameras are not auto-detected: libgphoto2's generic PTP/IP driver serves them.
+    if (model.empty()) model = "PTP/IP Camera";
+    // libgphoto2 writes to its PTP/IP sockets with write(): a camera that closed the
+    // connection would raise SIGPIPE and end the process instead of returning an error.
+    signal(SIGPIPE, SIG_IGN);
+  }
   if (model.empty() || (port.empty() && DiskPath(options_.port).empty())) {
     const std::vector<DetectedCamera> found = DetectGphoto2Cameras();
     const auto match = std::find_if(found.begin(), found.end(), [&](const DetectedCamera& c) {
@@ -482,6 +511,14 @@ std::vector<Frame> Gphoto2Camera::Capture() {
   try {
     Run("capture", [&] { return gp_camera_capture(camera_, GP_CAPTURE_IMAGE, &path, context_); });
   } catch (const CameraError& e) {
+    if (e.code() == GP_ERROR_NO_MEMORY) {
+      // libgphoto2's PTP driver reports a StoreFull event during capture this way.
+      throw CameraError(CameraError::Kind::kStorageFull, e.code(),
+                        Where() +
+                            ": the memory card ran full during capture: free space, or "
+                            "capture to the camera's RAM (capture_target: ram) with "
+                            "delete_after_download");
+    }
     if (e.kind() == CameraError::Kind::kUnsupported) {
       throw CameraError(e.kind(), e.code(),
                         Where() +
