@@ -1,5 +1,6 @@
 #include "rig/gphoto2_camera.h"
 
+#include <fcntl.h>
 #include <gphoto2/gphoto2.h>
 #include <signal.h>
 #include <unistd.h>
@@ -275,7 +276,15 @@ void Gphoto2Camera::Open() {
 
 void Gphoto2Camera::Close() {
   if (camera_ != nullptr) {
+    // libgphoto2 2.5.30's PTP/IP disconnect also closes descriptor 0 (a Fuji-only socket
+    // field it never initializes), which by then may be any file or socket of this process:
+    // keep a copy and put it back.
+    const int saved_fd0 = IsNetworkPort(info_.port) ? fcntl(0, F_DUPFD_CLOEXEC, 3) : -1;
     gp_camera_exit(camera_, context_);
+    if (saved_fd0 >= 0) {
+      dup2(saved_fd0, 0);
+      close(saved_fd0);
+    }
     gp_camera_unref(camera_);
     camera_ = nullptr;
   }
@@ -408,8 +417,27 @@ std::pair<std::string, std::string> Gphoto2Camera::SetConfig(const std::vector<s
       throw CameraError(CameraError::Kind::kBadSettings, set,
                         Where() + ": cannot set " + name + " to '" + value + "'");
     }
-    Run("setting " + name + " to '" + used + "'",
-        [&] { return gp_camera_set_config(camera_, config.root, context_); });
+    // One widget at a time: libgphoto2 2.5.30's whole-tree set_config goes on to the next
+    // widget when the camera refuses a property (DeviceBusy) and can return success, which
+    // would record a shot with an exposure the camera never took.
+    const std::string what = "setting " + name + " to '" + used + "'";
+    try {
+      Run(what,
+          [&] { return gp_camera_set_single_config(camera_, name.c_str(), widget, context_); });
+    } catch (const CameraError& e) {
+      // libgphoto2 2.5.30 reports every refused property as "bad parameters", whether the
+      // camera was busy or the link stalled (the value itself is one the camera offers). On a
+      // network camera the session may be out of step: close it and have the owner reopen.
+      if (!IsNetworkPort(info_.port) || e.kind() != CameraError::Kind::kBadSettings) throw;
+      const std::string where = Where();
+      Close();
+      throw CameraError(CameraError::Kind::kGone, e.code(),
+                        what + " on " + where +
+                            " was refused (camera busy or not answering; libgphoto2 " +
+                            std::to_string(e.code()) +
+                            "); Reopen() reconnects and the "
+                            "setting is made again");
+    }
     return {name, used};
   }
   std::string tried;

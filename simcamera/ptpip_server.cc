@@ -33,7 +33,7 @@ bool Readable(int fd) {
 
 // Operations that a body busy writing its card refuses.
 bool RefusedWhenBusy(std::uint16_t code) {
-  return code == op::kGetObject || code == op::kSetDevicePropValue || code == op::kDeleteObject;
+  return code == op::kGetObject || code == op::kDeleteObject;
 }
 
 }  // namespace
@@ -221,6 +221,10 @@ void PtpIpCameraServer::ServeCommand() {
       vanished_ = true;
     } else if (RefusedWhenBusy(request.code) && faults_.busy_responses > 0) {
       --faults_.busy_responses;
+      ++counters_.busy;
+      reply.code = rc::kDeviceBusy;
+    } else if (request.code == op::kSetDevicePropValue && faults_.busy_settings > 0) {
+      --faults_.busy_settings;
       ++counters_.busy;
       reply.code = rc::kDeviceBusy;
     } else {

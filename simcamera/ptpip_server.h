@@ -21,10 +21,12 @@
 namespace brdfrig::simcamera {
 
 struct CameraFaults {
-  // The next N of GetObject, SetDevicePropValue and DeleteObject answer DeviceBusy (0x2019),
+  // The next N downloads and deletions (GetObject, DeleteObject) answer DeviceBusy (0x2019),
   // as a body does while it writes the card. (Not InitiateCapture: libgphoto2 2.5.30's generic
   // capture ignores a failed InitiateCapture response and then waits for events forever.)
   int busy_responses = 0;
+  // The next N settings (SetDevicePropValue) answer DeviceBusy.
+  int busy_settings = 0;
   // Every response waits this long first. libgphoto2's PTP/IP socket timeout is 2.5 s: below
   // it the camera is merely slow, above it each operation times out.
   double response_delay_s = 0;
