@@ -1,6 +1,7 @@
 #include "sim/linear_dng.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/error.h"
 
@@ -29,12 +30,13 @@ class TiffWriter {
     d.push_back(0);
     entries_.push_back({tag, 2, static_cast<std::uint32_t>(d.size()), d});
   }
-  // type 5 = RATIONAL, 10 = SRATIONAL; each value is numerator/1.
-  void Rational(std::uint16_t tag, std::uint16_t type, const std::vector<std::int32_t>& v) {
+  // type 5 = RATIONAL, 10 = SRATIONAL; each value is written as round(v × 10000)/10000.
+  void Rational(std::uint16_t tag, std::uint16_t type, const std::vector<double>& v) {
     Entry e{tag, type, static_cast<std::uint32_t>(v.size()), {}};
-    for (std::int32_t x : v) {
-      Append(&e.data, static_cast<std::uint32_t>(x), 4);
-      Append(&e.data, 1, 4);
+    for (double x : v) {
+      Append(&e.data, static_cast<std::uint32_t>(static_cast<std::int32_t>(std::lround(x * 1e4))),
+             4);
+      Append(&e.data, 10000, 4);
     }
     entries_.push_back(std::move(e));
   }
@@ -115,25 +117,29 @@ std::vector<std::uint8_t> EncodeLinearDng(const cv::Mat& bgr16, const std::strin
     }
   }
   TiffWriter dng;
-  dng.Long(254, {0});                                    // NewSubFileType: main image
-  dng.Long(256, {w});                                    // ImageWidth
-  dng.Long(257, {h});                                    // ImageLength
-  dng.Short(258, {16, 16, 16});                          // BitsPerSample
-  dng.Short(259, {1});                                   // Compression: none
-  dng.Short(262, {34892});                               // PhotometricInterpretation: LinearRaw
-  dng.Ascii(271, "brdfrig");                             // Make
-  dng.Ascii(272, model);                                 // Model
-  dng.Long(273, {0});                                    // StripOffsets (filled in by Finish)
-  dng.Short(277, {3});                                   // SamplesPerPixel
-  dng.Long(278, {h});                                    // RowsPerStrip
-  dng.Long(279, {w * h * 6});                            // StripByteCounts
-  dng.Short(284, {1});                                   // PlanarConfiguration: chunky
-  dng.Bytes(50706, {1, 4, 0, 0});                        // DNGVersion
-  dng.Ascii(50708, "brdfrig " + model);                  // UniqueCameraModel
-  dng.Long(50717, {65535});                              // WhiteLevel
-  dng.Rational(50721, 10, {1, 0, 0, 0, 1, 0, 0, 0, 1});  // ColorMatrix1: identity
-  dng.Rational(50728, 5, {1, 1, 1});                     // AsShotNeutral
-  dng.Short(50778, {21});                                // CalibrationIlluminant1: D65
+  dng.Long(254, {0});                    // NewSubFileType: main image
+  dng.Long(256, {w});                    // ImageWidth
+  dng.Long(257, {h});                    // ImageLength
+  dng.Short(258, {16, 16, 16});          // BitsPerSample
+  dng.Short(259, {1});                   // Compression: none
+  dng.Short(262, {34892});               // PhotometricInterpretation: LinearRaw
+  dng.Ascii(271, "brdfrig");             // Make
+  dng.Ascii(272, model);                 // Model
+  dng.Long(273, {0});                    // StripOffsets (filled in by Finish)
+  dng.Short(277, {3});                   // SamplesPerPixel
+  dng.Long(278, {h});                    // RowsPerStrip
+  dng.Long(279, {w * h * 6});            // StripByteCounts
+  dng.Short(284, {1});                   // PlanarConfiguration: chunky
+  dng.Bytes(50706, {1, 4, 0, 0});        // DNGVersion
+  dng.Ascii(50708, "brdfrig " + model);  // UniqueCameraModel
+  dng.Long(50717, {65535});              // WhiteLevel
+  // ColorMatrix1 (XYZ → camera) is XYZ → linear sRGB (D65): the camera's primaries are sRGB's,
+  // so a raw converter's camera → sRGB step is the identity and every channel decodes to the
+  // value written (an identity matrix here would mix the channels on the way out).
+  dng.Rational(50721, 10,
+               {3.2406, -1.5372, -0.4986, -0.9689, 1.8758, 0.0415, 0.0557, -0.2040, 1.0570});
+  dng.Rational(50728, 5, {1, 1, 1});  // AsShotNeutral
+  dng.Short(50778, {21});             // CalibrationIlluminant1: D65
   return dng.Finish(strip);
 }
 

@@ -1,5 +1,5 @@
-// A minimal linear DNG (uncompressed LinearRaw, 3 × 16 bits per pixel, identity colour matrix,
-// neutral white balance, white level 65535) that LibRaw decodes back to the same linear values:
+// A minimal linear DNG (uncompressed LinearRaw, 3 × 16 bits per pixel, sRGB primaries, neutral
+// white balance, white level 65535) that LibRaw decodes back to the same linear values:
 // the RAW half of the simulated camera's RAW+JPEG pairs, and RAW test data (no maker's file can
 // be committed).
 #pragma once

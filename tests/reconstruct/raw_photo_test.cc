@@ -1,6 +1,6 @@
 // RAW decoding through LibRaw. No camera maker's file can be committed, so the test writes a
-// minimal linear DNG (sim/linear_dng.h: uncompressed LinearRaw, identity colour matrix,
-// neutral white balance) with a known step in it, and checks that the decoded values stay
+// minimal linear DNG (sim/linear_dng.h: uncompressed LinearRaw, sRGB primaries, neutral
+// white balance) with a known step in it, and checks that the decoded values stay
 // linear and in place.
 #include "reconstruct/raw_photo.h"
 
