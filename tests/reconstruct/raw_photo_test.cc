@@ -62,6 +62,19 @@ TEST(RawPhoto, LinearDngDecodesLinearlyWithTheSensorGrid) {
   }
 }
 
+// LibRaw by default takes a frame's own maximum as its white level when that maximum lies
+// above 75 % of the real one, and scales the frame up: a mid exposure of a bracket whose
+// brightest pixel reaches 86 % of full scale would come out 16 % too bright.
+TEST(RawPhoto, BrightFrameBelowWhiteIsNotRescaledToItsOwnMaximum) {
+  const auto path = Scratch("bright.dng");
+  WriteFileAtomically(path, LinearDng(64, 48, 28000, 56000));
+  const cv::Mat image = ReadPhoto(path.string());
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(image.at<cv::Vec3w>(24, 8)[c], 28000, 28000 * 0.005) << "channel " << c;
+    EXPECT_NEAR(image.at<cv::Vec3w>(24, 56)[c], 56000, 56000 * 0.005) << "channel " << c;
+  }
+}
+
 TEST(RawPhoto, CorruptRawNamesTheFile) {
   const auto path = Scratch("DSC_0001.NEF");
   WriteFileAtomically(path, "this is not a raw file");

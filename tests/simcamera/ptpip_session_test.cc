@@ -12,17 +12,11 @@
 #include <memory>
 #include <mutex>
 
-#include "acquire/capture.h"
 #include "reconstruct/raw_photo.h"
-#include "rig/drive_profile.h"
-#include "rig/hardware_backends.h"
 #include "session/session_reader.h"
 #include "session/session_verify.h"
-#include "sim/modbus_drive_server.h"
-#include "simcamera/drive_positions.h"
-#include "simcamera/ptpip_server.h"
-#include "simcamera/shot_renderer.h"
 #include "tests/acquire/test_rig.h"
+#include "tests/simcamera/loopback_lab.h"
 
 extern "C" const char* __lsan_default_suppressions() {
   return "leak:libgphoto2.so\nleak:libgphoto2_port.so\nleak:libltdl.so\n";
@@ -42,62 +36,18 @@ class PtpipSessionTest : public ::testing::Test {
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "sessions");
-    setenv("HOME", dir_.c_str(), 1);  // libgphoto2's ~/.gphoto/settings
-    rig::RegisterHardwareBackends();
-    std::ofstream(dir_ / "scene.yaml") << acquire::testing::SmallSceneYaml();
-    std::ofstream(dir_ / "plan.yaml") << acquire::testing::SmallPlanYaml();
-
-    const rig::DriveProfile profile = rig::LoadDriveProfile("generic");
-    for (const char* axis : {"camera_arm", "light_arm"}) {
-      drives_[axis] = std::make_unique<sim::ModbusDriveServer>(profile, sim::DriveServerOptions{});
-    }
-    // The drives' positions are read over Modbus, from the rig file written below (its axes
-    // connect on their first request, at the first shot).
-    renderer_ = std::make_shared<ShotRenderer>(
-        sim::LoadScene(dir_ / "scene.yaml"),
-        [this] {
-          std::lock_guard lock(positions_mutex_);
-          if (!positions_) positions_ = std::make_unique<DrivePositions>(dir_ / "rig.yaml");
-          return positions_->Read();
-        },
-        2);
-    camera_ = std::make_unique<PtpIpCameraServer>(
-        CameraServerOptions{.offer = {.shutter_speeds_s = {0.001, 0.01, 0.1}}},
-        [renderer = renderer_](const ExposureSettings& e) { return renderer->Shoot(e); });
-    WriteRig(true);
-  }
-
-  void WriteRig(bool delete_after_download) {
-    std::ofstream(dir_ / "rig.yaml")
-        << "geometry: scene.yaml\n"
-        << "camera: {backend: gphoto2, port: \"" << camera_->PortPath()
-        << "\", delete_after_download: " << (delete_after_download ? "true" : "false")
-        << ", event_drain_s: 0.5, timeout_s: 20}\n"
-        << "axes:\n"
-        << DriveLine("camera_arm") << DriveLine("light_arm");
+    lab_ = std::make_unique<LoopbackLab>(dir_, acquire::testing::SmallSceneYaml(),
+                                         acquire::testing::SmallPlanYaml(),
+                                         std::vector<double>{0.001, 0.01, 0.1});
   }
 
   void TearDown() override {
-    camera_.reset();
-    positions_.reset();
+    lab_.reset();
     fs::remove_all(dir_);
   }
 
-  std::string DriveLine(const std::string& axis) const {
-    return "  " + axis + ": {backend: modbus, transport: tcp, host: 127.0.0.1, port: " +
-           std::to_string(drives_.at(axis)->port()) +
-           ", slave: 1, profile: generic, steps_per_degree: 100, speed_deg_s: 400, "
-           "accel_deg_s2: 4000}\n";
-  }
-
-  acquire::CaptureSummary Capture(const std::string& name) {
-    acquire::CaptureOptions options;
-    options.rig_file = dir_ / "rig.yaml";
-    options.plan_file = dir_ / "plan.yaml";
-    options.output_dir = dir_ / "sessions" / name;
-    options.run.retry.initial_backoff_s = 0.3;
-    return acquire::RunCapture(options);
-  }
+  acquire::CaptureSummary Capture(const std::string& name) { return lab_->Capture(name); }
+  PtpIpCameraServer& camera() { return lab_->camera(); }
 
   // Checks a finished session: complete, verified, a DNG and a JPEG per shot, each DNG the
   // simulator's image at the axis readings the session recorded for it.
@@ -108,7 +58,7 @@ class PtpipSessionTest : public ::testing::Test {
     EXPECT_EQ(s.exit_status, "success");
     EXPECT_TRUE(s.Complete());
     ASSERT_EQ(s.frames.size(), 12u);  // 3 positions × 2 exposures × (JPEG + DNG)
-    const sim::Simulator truth(renderer_->scene());
+    const sim::Simulator truth(lab_->renderer().scene());
     int dngs = 0;
     for (const session::RecordedFrame& f : s.frames) {
       if (f.file.extension() != ".dng") continue;
@@ -128,48 +78,44 @@ class PtpipSessionTest : public ::testing::Test {
   }
 
   fs::path dir_;
-  std::map<std::string, std::unique_ptr<sim::ModbusDriveServer>> drives_;
-  std::mutex positions_mutex_;
-  std::unique_ptr<DrivePositions> positions_;
-  std::shared_ptr<ShotRenderer> renderer_;
-  std::unique_ptr<PtpIpCameraServer> camera_;
+  std::unique_ptr<LoopbackLab> lab_;
 };
 
 TEST_F(PtpipSessionTest, CaptureThroughHardwareBackendsRecordsTheSceneAtTheDrivesPositions) {
   const acquire::CaptureSummary summary = Capture("clean");
   ASSERT_EQ(summary.run.status, acquire::ExitStatus::kSuccess) << summary.ToString();
   ExpectCompleteAndTrue(dir_ / "sessions" / "clean");
-  EXPECT_EQ(camera_->counters().captures, 6);
-  EXPECT_EQ(camera_->files_on_card(), 0u);
+  EXPECT_EQ(camera().counters().captures, 6);
+  EXPECT_EQ(camera().files_on_card(), 0u);
 }
 
 TEST_F(PtpipSessionTest, BusyAndDroppedDownloadsAreRetriedAndNothingIsLost) {
-  camera_->InjectFaults({.busy_responses = 2, .drop_downloads = 1});
+  camera().InjectFaults({.busy_responses = 2, .drop_downloads = 1});
   const acquire::CaptureSummary summary = Capture("faults");
   ASSERT_EQ(summary.run.status, acquire::ExitStatus::kSuccess) << summary.ToString();
   EXPECT_GE(summary.run.retries, 1);
   ExpectCompleteAndTrue(dir_ / "sessions" / "faults");
-  EXPECT_EQ(camera_->counters().busy, 2);
-  EXPECT_EQ(camera_->counters().dropped, 1);
-  EXPECT_EQ(camera_->counters().captures, 7);  // the shot whose download broke is retaken
+  EXPECT_EQ(camera().counters().busy, 2);
+  EXPECT_EQ(camera().counters().dropped, 1);
+  EXPECT_EQ(camera().counters().captures, 7);  // the shot whose download broke is retaken
 }
 
 TEST_F(PtpipSessionTest, CameraThatVanishesIsReopenedWhenBackAndTheSessionCompletes) {
-  camera_->InjectFaults({.vanish_s = 1.0});
+  camera().InjectFaults({.vanish_s = 1.0});
   const acquire::CaptureSummary summary = Capture("vanish");
   ASSERT_EQ(summary.run.status, acquire::ExitStatus::kSuccess) << summary.ToString();
   ExpectCompleteAndTrue(dir_ / "sessions" / "vanish");
-  EXPECT_EQ(camera_->counters().vanished, 1);
-  EXPECT_GE(camera_->counters().connections, 2);
+  EXPECT_EQ(camera().counters().vanished, 1);
+  EXPECT_GE(camera().counters().connections, 2);
 }
 
 TEST_F(PtpipSessionTest, FullCardStopsTheSessionAsFailedAndKeepsWhatWasRecorded) {
-  WriteRig(false);  // files stay on the card, which holds three RAW+JPEG shots
-  camera_->InjectFaults({.card_capacity_files = 6});
+  lab_->WriteRig(false);  // files stay on the card, which holds three RAW+JPEG shots
+  camera().InjectFaults({.card_capacity_files = 6});
   const acquire::CaptureSummary summary = Capture("full");
   EXPECT_EQ(summary.run.status, acquire::ExitStatus::kFailed) << summary.ToString();
   EXPECT_NE(summary.ToString().find("memory card"), std::string::npos) << summary.ToString();
-  EXPECT_EQ(camera_->counters().store_full, 1);  // not retried: retrying cannot free space
+  EXPECT_EQ(camera().counters().store_full, 1);  // not retried: retrying cannot free space
   const session::VerifyReport verify = session::VerifySession(dir_ / "sessions" / "full");
   EXPECT_TRUE(verify.ok()) << verify.ToString();
   const session::SessionContents s = session::ReadSession(dir_ / "sessions" / "full");
