@@ -87,6 +87,11 @@ class SimCameraCliTest : public ::testing::Test {
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
     setenv("HOME", dir_.c_str(), 1);  // libgphoto2's settings file, for the child processes
+    // In sanitizer builds the brdfrig children that open a libgphoto2 camera would end with
+    // LeakSanitizer's report of libgphoto2's camlib handles (kept until exit, not ours; see
+    // tests/rig/gphoto2_camera_test.cc): leak checking is off for them only.
+    const char* asan = getenv("ASAN_OPTIONS");
+    setenv("ASAN_OPTIONS", ((asan ? std::string(asan) + ":" : "") + "detect_leaks=0").c_str(), 1);
     std::ofstream(dir_ / "scene.yaml") << brdfrig::sim::testing::BaseSceneYaml();
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
