@@ -130,11 +130,15 @@ void PtpIpCameraServer::Serve() {
     try {
       if (fds[0].revents & POLLIN) Accept();
       if (command_ >= 0 && (fds[1].revents & (POLLIN | POLLHUP | POLLERR))) ServeCommand();
-      // The initiator writes nothing on the event channel after its init; anything readable
-      // there is the connection closing.
+      // On the event channel the initiator only probes whether the camera is alive (Probe
+      // Request → Probe Response); otherwise readable means the connection is closing.
       if (event_ >= 0 && Readable(event_)) {
-        char byte;
-        if (recv(event_, &byte, 1, MSG_DONTWAIT) <= 0) CloseFd(event_);
+        const std::optional<Packet> packet = ReadPacket(event_, kPacketTimeout);
+        if (!packet) {
+          CloseFd(event_);
+        } else if (packet->type == PacketType::kProbeRequest) {
+          WritePacket(event_, PacketType::kProbeResponse, {});
+        }
       }
     } catch (const Error& e) {
       // A protocol error ends the connection, as a body drops a confused initiator.
@@ -149,7 +153,13 @@ void PtpIpCameraServer::Accept() {
   if (fd < 0) return;
   const int on = 1;
   setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
-  const std::optional<Packet> init = ReadPacket(fd, kPacketTimeout);
+  // A bad newcomer costs only its own connection, never the initiator already served.
+  std::optional<Packet> init;
+  try {
+    init = ReadPacket(fd, kPacketTimeout);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "simulated camera: %s; refusing the new connection\n", e.what());
+  }
   if (!init) {
     close(fd);
     return;
