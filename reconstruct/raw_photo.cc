@@ -38,6 +38,10 @@ cv::Mat ReadRawPhoto(const std::filesystem::path& path) {
   params.gamm[0] = 1.0;  // linear output: the HDR merge needs values proportional to exposure
   params.gamm[1] = 1.0;
   params.no_auto_bright = 1;
+  // LibRaw otherwise takes a frame's own maximum as the white level when it exceeds 75 % of
+  // the real one, scaling bright frames up (up to a third): values must stay proportional to
+  // exposure across a bracket.
+  params.adjust_maximum_thr = 0;
   params.use_camera_wb = 1;
   params.user_flip = 0;  // keep the sensor's pixel grid (the intrinsics are for it)
   check(raw->unpack(), "unpack");

@@ -1,6 +1,8 @@
 #include "rig/gphoto2_camera.h"
 
+#include <fcntl.h>
 #include <gphoto2/gphoto2.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -61,6 +63,16 @@ std::string Seconds(std::chrono::milliseconds duration) {
 
 std::string DiskPath(const std::string& port) {
   return port.rfind("disk:", 0) == 0 ? port.substr(5) : std::string();
+}
+
+bool IsNetworkPort(const std::string& port) { return port.rfind("ptpip:", 0) == 0; }
+
+// Results with which libgphoto2's PTP/IP transport reports a broken or silent link (a closed
+// socket reads as a generic error, a silent one as a timeout after 2.5 s). The session on the
+// camera cannot continue on that connection: it must be opened again.
+bool IsLinkFailure(int result) {
+  return result == GP_ERROR || result == GP_ERROR_TIMEOUT || result == GP_ERROR_IO ||
+         result == GP_ERROR_IO_READ || result == GP_ERROR_IO_WRITE || result == GP_ERROR_IO_INIT;
 }
 
 }  // namespace
@@ -153,6 +165,17 @@ int Gphoto2Camera::Run(const std::string& what, Call call) {
       backoff *= 2;
       continue;
     }
+    if (IsNetworkPort(info_.port) && (timed_out || IsLinkFailure(result))) {
+      // The PTP/IP session is out of step or gone: close it so that nothing reads a late
+      // answer as the reply to a new request, and let the owner reopen (a fresh session).
+      const std::string where = Where();
+      Close();
+      throw CameraError(CameraError::Kind::kGone, result,
+                        what + " on " + where + " lost the network connection (libgphoto2 " +
+                            std::to_string(result) + ": " + gp_result_as_string(result) +
+                            "); check that the camera is on and reachable; Reopen() "
+                            "reconnects");
+    }
     if (timed_out || result == GP_ERROR_CANCEL) {
       throw CameraError(CameraError::Kind::kTimeout, result,
                         what + " on " + Where() + " took longer than " +
@@ -170,6 +193,13 @@ void Gphoto2Camera::Open() {
 
   std::string model = options_.model;
   std::string port = options_.port;
+  if (IsNetworkPort(port)) {
+    // Network cameras are not auto-detected: libgphoto2's generic PTP/IP driver serves them.
+    if (model.empty()) model = "PTP/IP Camera";
+    // libgphoto2 writes to its PTP/IP sockets with write(): a camera that closed the
+    // connection would raise SIGPIPE and end the process instead of returning an error.
+    signal(SIGPIPE, SIG_IGN);
+  }
   if (model.empty() || (port.empty() && DiskPath(options_.port).empty())) {
     const std::vector<DetectedCamera> found = DetectGphoto2Cameras();
     const auto match = std::find_if(found.begin(), found.end(), [&](const DetectedCamera& c) {
@@ -246,7 +276,15 @@ void Gphoto2Camera::Open() {
 
 void Gphoto2Camera::Close() {
   if (camera_ != nullptr) {
+    // libgphoto2 2.5.30's PTP/IP disconnect also closes descriptor 0 (a Fuji-only socket
+    // field it never initializes), which by then may be any file or socket of this process:
+    // keep a copy and put it back.
+    const int saved_fd0 = IsNetworkPort(info_.port) ? fcntl(0, F_DUPFD_CLOEXEC, 3) : -1;
     gp_camera_exit(camera_, context_);
+    if (saved_fd0 >= 0) {
+      dup2(saved_fd0, 0);
+      close(saved_fd0);
+    }
     gp_camera_unref(camera_);
     camera_ = nullptr;
   }
@@ -379,8 +417,27 @@ std::pair<std::string, std::string> Gphoto2Camera::SetConfig(const std::vector<s
       throw CameraError(CameraError::Kind::kBadSettings, set,
                         Where() + ": cannot set " + name + " to '" + value + "'");
     }
-    Run("setting " + name + " to '" + used + "'",
-        [&] { return gp_camera_set_config(camera_, config.root, context_); });
+    // One widget at a time: libgphoto2 2.5.30's whole-tree set_config goes on to the next
+    // widget when the camera refuses a property (DeviceBusy) and can return success, which
+    // would record a shot with an exposure the camera never took.
+    const std::string what = "setting " + name + " to '" + used + "'";
+    try {
+      Run(what,
+          [&] { return gp_camera_set_single_config(camera_, name.c_str(), widget, context_); });
+    } catch (const CameraError& e) {
+      // libgphoto2 2.5.30 reports every refused property as "bad parameters", whether the
+      // camera was busy or the link stalled (the value itself is one the camera offers). On a
+      // network camera the session may be out of step: close it and have the owner reopen.
+      if (!IsNetworkPort(info_.port) || e.kind() != CameraError::Kind::kBadSettings) throw;
+      const std::string where = Where();
+      Close();
+      throw CameraError(CameraError::Kind::kGone, e.code(),
+                        what + " on " + where +
+                            " was refused (camera busy or not answering; libgphoto2 " +
+                            std::to_string(e.code()) +
+                            "); Reopen() reconnects and the "
+                            "setting is made again");
+    }
     return {name, used};
   }
   std::string tried;
@@ -482,6 +539,14 @@ std::vector<Frame> Gphoto2Camera::Capture() {
   try {
     Run("capture", [&] { return gp_camera_capture(camera_, GP_CAPTURE_IMAGE, &path, context_); });
   } catch (const CameraError& e) {
+    if (e.code() == GP_ERROR_NO_MEMORY) {
+      // libgphoto2's PTP driver reports a StoreFull event during capture this way.
+      throw CameraError(CameraError::Kind::kStorageFull, e.code(),
+                        Where() +
+                            ": the memory card ran full during capture: free space, or "
+                            "capture to the camera's RAM (capture_target: ram) with "
+                            "delete_after_download");
+    }
     if (e.kind() == CameraError::Kind::kUnsupported) {
       throw CameraError(e.kind(), e.code(),
                         Where() +

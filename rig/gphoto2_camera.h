@@ -1,9 +1,11 @@
 // A tethered camera through libgphoto2. Opens the first camera found, or one by model and/or
-// port ("usb:001,004", or "disk:/dir" for libgphoto2's Directory Browse driver, which the tests
-// use). Settings go through config widgets whose names differ between makers; each setting
-// tries the known names in order (see docs/rig.md). Every call runs under our own watchdog:
-// libgphoto2 polls the context's cancel function during long operations, and we answer
-// "cancel" once the deadline has passed. Busy cameras are retried with back-off.
+// port ("usb:001,004"; "ptpip:HOST:PORT:PORT" for a network camera, served by libgphoto2's
+// generic "PTP/IP Camera" driver; "disk:/dir" for the Directory Browse driver). On a network
+// camera a lost or silent link, or a refused setting, closes the camera and is kGone: Reopen()
+// starts a new PTP session (docs/rig.md). Settings go through config widgets whose names differ
+// between makers; each setting tries the known names in order (see docs/rig.md). Every call runs
+// under our own watchdog: libgphoto2 polls the context's cancel function during long operations,
+// and we answer "cancel" once the deadline has passed. Busy cameras are retried with back-off.
 //
 // Not thread-safe: one thread owns the camera (libgphoto2 contexts are not shared).
 #pragma once
@@ -26,7 +28,7 @@ namespace brdfrig::rig {
 
 struct Gphoto2Options {
   std::string model;  // empty: the first camera found
-  std::string port;   // empty: wherever `model` is found
+  std::string port;   // empty: wherever `model` is found; "ptpip:..." needs no model
   // Settings applied on open; empty leaves the camera's value. Values must be among the
   // choices the camera offers (matched case-insensitively); errors list the choices.
   std::string image_format;    // e.g. "RAW + Large Fine JPEG" (imageformat / imagequality)

@@ -82,4 +82,18 @@ Rig OpenRig(const std::filesystem::path& rig_file, RigLock held) {
   return rig;
 }
 
+std::map<std::string, std::unique_ptr<Axis>> OpenRigAxes(const std::filesystem::path& rig_file) {
+  ReadRigDescription(rig_file);
+  const YamlNode root = LoadYamlFile(rig_file.string());
+  const std::string base = rig_file.parent_path().string();
+  std::map<std::string, std::unique_ptr<Axis>> axes;
+  if (const auto section = root.Optional("axes")) {
+    for (const std::string& name : section->Keys()) {
+      const YamlNode axis = section->Required(name);
+      axes[name] = CreateAxis(BackendOf(axis), axis, {name, base});
+    }
+  }
+  return axes;
+}
+
 }  // namespace brdfrig::rig

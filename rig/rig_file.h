@@ -50,4 +50,9 @@ Rig OpenRig(const std::filesystem::path& rig_file);
 // must own the rig before they touch anything else (a session to resume).
 Rig OpenRig(const std::filesystem::path& rig_file, RigLock held);
 
+// Opens only the axes of rig.yaml, without the rig's lock and without its camera or light: for
+// a process that watches where the drives are while another one owns and moves the rig (it
+// must only read them). Throws like OpenRig.
+std::map<std::string, std::unique_ptr<Axis>> OpenRigAxes(const std::filesystem::path& rig_file);
+
 }  // namespace brdfrig::rig

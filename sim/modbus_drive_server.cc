@@ -10,9 +10,11 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "common/error.h"
 
@@ -74,7 +76,7 @@ ModbusDriveServer::ModbusDriveServer(rig::DriveProfile profile, DriveServerOptio
 ModbusDriveServer::~ModbusDriveServer() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
-  if (client_fd_ != -1) close(client_fd_);
+  for (int fd : clients_) close(fd);
   if (listen_fd_ != -1) close(listen_fd_);
   if (pty_master_ != -1) close(pty_master_);
   if (pty_slave_ != -1) close(pty_slave_);
@@ -130,38 +132,46 @@ void ModbusDriveServer::Set(int address, int32_t value) {
 
 void ModbusDriveServer::Serve() {
   uint8_t query[MODBUS_TCP_MAX_ADU_LENGTH];
+  const bool tcp = options_.transport == DriveServerOptions::Transport::kTcp;
   while (!stop_) {
-    pollfd fds[2];
-    int n = 0;
-    const bool tcp = options_.transport == DriveServerOptions::Transport::kTcp;
-    if (tcp) fds[n++] = {listen_fd_, POLLIN, 0};
-    const int data_fd = tcp ? client_fd_ : pty_master_;
-    if (data_fd != -1) fds[n++] = {data_fd, POLLIN, 0};
+    std::vector<pollfd> fds;
+    if (tcp) {
+      fds.push_back({listen_fd_, POLLIN, 0});
+      for (int fd : clients_) fds.push_back({fd, POLLIN, 0});
+    } else {
+      fds.push_back({pty_master_, POLLIN, 0});
+    }
     // Short poll so that the destructor's stop flag is seen quickly.
-    if (poll(fds, static_cast<nfds_t>(n), 20) <= 0) continue;
+    if (poll(fds.data(), static_cast<nfds_t>(fds.size()), 20) <= 0) continue;
     if (tcp && (fds[0].revents & POLLIN)) {
       const int fd = accept(listen_fd_, nullptr, nullptr);
       if (fd != -1) {
-        if (client_fd_ != -1) close(client_fd_);
-        client_fd_ = fd;
-        modbus_set_socket(ctx_, client_fd_);
+        clients_.push_back(fd);
+        if (clients_.size() > kMaxTcpClients) {  // the oldest is most likely abandoned
+          close(clients_.front());
+          clients_.erase(clients_.begin());
+        }
         std::lock_guard lock(mutex_);
         ++counters_.connections;
       }
       continue;
     }
-    if (data_fd == -1 || !(fds[n - 1].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-    const int length = modbus_receive(ctx_, query);
-    if (length == -1) {
-      if (tcp) {  // the client went away (or sent garbage): wait for its next connection
-        close(client_fd_);
-        client_fd_ = -1;
-      } else {
-        modbus_flush(ctx_);
+    for (std::size_t i = tcp ? 1 : 0; i < fds.size(); ++i) {
+      if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      client_fd_ = fds[i].fd;  // the connection being answered
+      modbus_set_socket(ctx_, client_fd_);
+      const int length = modbus_receive(ctx_, query);
+      if (length == -1) {
+        if (tcp) {  // the client went away (or sent garbage): forget this connection
+          close(client_fd_);
+          clients_.erase(std::find(clients_.begin(), clients_.end(), client_fd_));
+        } else {
+          modbus_flush(ctx_);
+        }
+        continue;
       }
-      continue;
+      if (length > 0) Handle(query, length);
     }
-    if (length > 0) Handle(query, length);
   }
 }
 

@@ -4,8 +4,9 @@
 // map with simple trapezoidal motion (speed, acceleration, position readback) in real time,
 // and faults can be injected for the next requests or the next move.
 //
-// One thread owns the libmodbus context and serves one client connection at a time (a new TCP
-// connection replaces the old one, as a drive does after the client reconnects).
+// One thread owns the libmodbus context and answers every TCP client connected (up to
+// kMaxTcpClients; a gateway serves several masters, e.g. the capture and a simulated camera
+// reading positions), one request at a time.
 #pragma once
 
 #include <atomic>
@@ -15,6 +16,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "rig/drive_profile.h"
 
@@ -101,7 +103,9 @@ class ModbusDriveServer {
   modbus_t* ctx_ = nullptr;
   modbus_mapping_t* map_ = nullptr;
   int listen_fd_ = -1;
-  int client_fd_ = -1;
+  static constexpr std::size_t kMaxTcpClients = 8;
+  std::vector<int> clients_;  // TCP connections
+  int client_fd_ = -1;        // the connection (or pty) of the request being answered
   int pty_master_ = -1, pty_slave_ = -1;
   int port_ = 0;
   std::string pty_;

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "rig/rig_tools.h"
 #include "sim/drive_server_tool.h"
+#include "simcamera/sim_camera_tool.h"
 
 namespace brdfrig::apps {
 namespace {
@@ -19,6 +20,7 @@ struct RigArgs {
   std::string exposure;
   std::string output;
   sim::SimDriveOptions simdrive;
+  simcamera::SimCameraOptions simcamera;
 };
 
 // Faults for the simulated drive, to rehearse what an operator sees (docs/rig.md, faults).
@@ -32,6 +34,20 @@ void DriveFaultsOptions(CLI::App* cmd, sim::DriveFaults& faults) {
                   "Raise an alarm at this fraction (0..1) of the first move");
   cmd->add_option("--alarm-code", faults.alarm_code, "Alarm code (default 0x30 = 48)");
   cmd->add_option("--slow", faults.speed_factor, "Move at this fraction of the commanded speed");
+}
+
+// Faults for the simulated camera (docs/rig.md, camera faults).
+void CameraFaultsOptions(CLI::App* cmd, simcamera::CameraFaults& faults) {
+  cmd->add_option("--busy", faults.busy_responses,
+                  "Answer the next N downloads, deletions and settings DeviceBusy");
+  cmd->add_option("--slow", faults.response_delay_s,
+                  "Delay every response by S seconds (libgphoto2 times out after 2.5 s)");
+  cmd->add_option("--drop", faults.drop_downloads,
+                  "Break the connection during the next N downloads");
+  cmd->add_option("--card-files", faults.card_capacity_files,
+                  "The card holds at most N files (a shot is 2: RAW+JPEG); then StoreFull");
+  cmd->add_option("--vanish", faults.vanish_s,
+                  "At the next capture, disappear from the network for S seconds");
 }
 
 }  // namespace
@@ -78,6 +94,19 @@ void RegisterRigCommands(CLI::App& app) {
   simdrive->add_option("--slave", args->simdrive.slave, "Modbus slave id (default 1)");
   DriveFaultsOptions(simdrive, args->simdrive.faults);
   simdrive->callback([args] { sim::RunSimulatedDrive(args->simdrive); });
+
+  CLI::App* simcamera = rig->add_subcommand(
+      "simcamera",
+      "Serve a simulated PTP/IP network camera (libgphoto2 port ptpip:HOST:PORT) until Ctrl-C");
+  simcamera->add_option("--listen", args->simcamera.listen,
+                        "HOST:PORT to listen on (default 127.0.0.1:15740; port 0: any)");
+  simcamera->add_option("--scene", args->simcamera.scene, "Scene file the camera photographs")
+      ->required();
+  simcamera->add_option("--rig", args->simcamera.rig,
+                        "rig.yaml whose axes (drives) give the pose of each shot");
+  simcamera->add_option("--threads", args->simcamera.threads, "Rendering threads (0: all)");
+  CameraFaultsOptions(simcamera, args->simcamera.faults);
+  simcamera->callback([args] { simcamera::RunSimulatedCamera(args->simcamera); });
 }
 
 }  // namespace brdfrig::apps
