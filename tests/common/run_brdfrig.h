@@ -2,11 +2,15 @@
 // arguments, for tests of the command line: exit status and everything it printed.
 #pragma once
 
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace brdfrig::testing {
 
@@ -26,5 +30,59 @@ inline CommandResult RunBrdfrig(const std::string& arguments) {
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
+
+// `brdfrig ARGS...` in the background until Stop() (Ctrl-C); keeps the first line it prints,
+// which names where it serves (the simulated drive and camera print their port first).
+class BackgroundBrdfrig {
+ public:
+  explicit BackgroundBrdfrig(std::vector<std::string> args) {
+    args.insert(args.begin(), BRDFRIG_BINARY);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    int out[2];
+    if (pipe(out) != 0) return;
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(out[1], STDOUT_FILENO);
+      close(out[0]);
+      execv(BRDFRIG_BINARY, argv.data());
+      _exit(127);
+    }
+    close(out[1]);
+    output_ = fdopen(out[0], "r");
+    char line[512];
+    if (fgets(line, sizeof(line), output_) != nullptr) first_line_ = line;
+  }
+  BackgroundBrdfrig(const BackgroundBrdfrig&) = delete;
+  BackgroundBrdfrig& operator=(const BackgroundBrdfrig&) = delete;
+  // Sends Ctrl-C and returns the exit status and the rest of the output.
+  CommandResult Stop() {
+    CommandResult result;
+    kill(pid_, SIGINT);
+    char line[512];
+    while (fgets(line, sizeof(line), output_) != nullptr) result.output += line;
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+  }
+  ~BackgroundBrdfrig() {
+    if (pid_ > 0) Stop();
+    if (output_ != nullptr) fclose(output_);
+  }
+  const std::string& first_line() const { return first_line_; }
+  // The number after the last ':' of the first line ("... serving on tcp://127.0.0.1:PORT").
+  int port() const {
+    const auto colon = first_line_.rfind(':');
+    return colon == std::string::npos ? 0 : std::atoi(first_line_.c_str() + colon + 1);
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* output_ = nullptr;
+  std::string first_line_;
+};
 
 }  // namespace brdfrig::testing

@@ -25,54 +25,17 @@ using Result = brdfrig::testing::CommandResult;
 Result Brdfrig(const std::string& arguments) { return brdfrig::testing::RunBrdfrig(arguments); }
 
 // `brdfrig rig simdrive --tcp 0` in the background; its first line names the port.
-class SimDrive {
+class SimDrive : public brdfrig::testing::BackgroundBrdfrig {
  public:
-  explicit SimDrive(std::vector<std::string> extra = {}) {
-    std::vector<std::string> args = {BRDFRIG_BINARY, "rig", "simdrive", "--tcp", "0"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    int out[2];
-    if (pipe(out) != 0) return;
-    pid_ = fork();
-    if (pid_ == 0) {
-      dup2(out[1], STDOUT_FILENO);
-      close(out[0]);
-      execv(BRDFRIG_BINARY, argv.data());
-      _exit(127);
-    }
-    close(out[1]);
-    output_ = fdopen(out[0], "r");
-    char line[512];
-    if (fgets(line, sizeof(line), output_) != nullptr) {
-      const std::string text = line;
-      const auto colon = text.rfind(':');
-      if (colon != std::string::npos) port_ = std::atoi(text.c_str() + colon + 1);
-    }
-  }
-  // Sends Ctrl-C and returns the exit status and the rest of the output.
-  Result Stop() {
-    Result result;
-    kill(pid_, SIGINT);
-    char line[512];
-    while (fgets(line, sizeof(line), output_) != nullptr) result.output += line;
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-  }
-  ~SimDrive() {
-    if (pid_ > 0) Stop();
-    if (output_ != nullptr) fclose(output_);
-  }
-  int port() const { return port_; }
+  explicit SimDrive(std::vector<std::string> extra = {})
+      : BackgroundBrdfrig(Arguments(std::move(extra))) {}
 
  private:
-  pid_t pid_ = -1;
-  FILE* output_ = nullptr;
-  int port_ = 0;
+  static std::vector<std::string> Arguments(std::vector<std::string> extra) {
+    std::vector<std::string> args = {"rig", "simdrive", "--tcp", "0"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
 };
 
 class RigCliTest : public ::testing::Test {
