@@ -24,7 +24,11 @@ using nlohmann::json;
 
 constexpr const char* kDaemonStopped = "daemon stopped";
 
-HttpResponse Json(int status, const json& body) { return {status, body.dump()}; }
+// Messages may quote what a client sent (a JSON parser's error shows the offending bytes):
+// invalid UTF-8 is replaced rather than thrown, so a malformed request still gets its 4xx.
+HttpResponse Json(int status, const json& body) {
+  return {status, body.dump(-1, ' ', false, json::error_handler_t::replace)};
+}
 HttpResponse Fail(int status, const std::string& reason) {
   return Json(status, json{{"error", reason}});
 }

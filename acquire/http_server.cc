@@ -26,7 +26,9 @@ bool SameSecret(const std::string& a, const std::string& b) {
 }
 
 HttpResponse ErrorResponse(int status, const std::string& reason) {
-  return {status, nlohmann::json{{"error", reason}}.dump()};
+  // `reason` may quote a client's bytes: invalid UTF-8 is replaced, never thrown.
+  return {status, nlohmann::json{{"error", reason}}.dump(-1, ' ', false,
+                                                         nlohmann::json::error_handler_t::replace)};
 }
 
 MHD_Result Send(MHD_Connection* connection, const HttpResponse& response) {

@@ -93,6 +93,7 @@ CollectReport Collect(const JobDir& dir, const SchedulerView& scheduler) {
                                                : Outcome::kFailed;
       item.why = result.item.message;
       for (const std::string& d : result.item.dropped) item.why += "; dropped " + d;
+      for (const std::string& d : result.item.degraded) item.why += "; degraded " + d;
       if (!result.job.empty()) item.why += " (" + result.job + " on " + result.host + ")";
     } else if (state != scheduler.tasks.end()) {
       item.outcome = Outcome::kNoResult;

@@ -78,8 +78,9 @@ TaskResult RunTask(const JobDir& dir, int index, const reconstruct::ProgressCall
 }
 
 std::string SerializeTaskResult(const TaskResult& result) {
-  json dropped = json::array();
+  json dropped = json::array(), degraded = json::array();
   for (const std::string& d : result.item.dropped) dropped.push_back(d);
+  for (const std::string& d : result.item.degraded) degraded.push_back(d);
   return json{{"index", result.index},
               {"capture", result.item.input.string()},
               {"material", result.item.material_file.string()},
@@ -87,6 +88,7 @@ std::string SerializeTaskResult(const TaskResult& result) {
               {"exit_status", result.exit_status},
               {"message", result.item.message},
               {"dropped", dropped},
+              {"degraded", degraded},
               {"seconds", result.item.seconds},
               {"job", result.job},
               {"host", result.host}}
@@ -105,6 +107,9 @@ TaskResult ReadTaskResult(const fs::path& file) {
     result.exit_status = root.at("exit_status").get<int>();
     result.item.message = root.at("message").get<std::string>();
     for (const json& d : root.at("dropped")) result.item.dropped.push_back(d.get<std::string>());
+    for (const json& d : root.value("degraded", json::array())) {
+      result.item.degraded.push_back(d.get<std::string>());
+    }
     result.item.seconds = root.at("seconds").get<double>();
     result.job = root.value("job", "");
     result.host = root.value("host", "");

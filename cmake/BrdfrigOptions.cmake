@@ -11,18 +11,38 @@ endif()
 if(BRDFRIG_WERROR)
   target_compile_options(brdfrig_options INTERFACE -Werror)
 endif()
-if(BRDFRIG_SANITIZE)
-  # -O1 as ASan recommends: an unoptimized instrumented build runs the reconstruction suites
-  # ~20x slower than release, too slow for a routine run.
+# BRDFRIG_SANITIZE: OFF; ON or address (ASan + UBSan); thread (TSan); fuzzer (libFuzzer, clang).
+# -O1 throughout as the sanitizers recommend: an unoptimized instrumented build runs the
+# reconstruction suites ~20x slower than release, too slow for a routine run.
+string(TOLOWER "${BRDFRIG_SANITIZE}" brdfrig_sanitize)
+set(BRDFRIG_FUZZ OFF)
+set(BRDFRIG_TSAN OFF)
+if(brdfrig_sanitize STREQUAL "thread")
+  set(BRDFRIG_TSAN ON)
+  target_compile_options(brdfrig_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer -O1)
+  target_link_options(brdfrig_options INTERFACE -fsanitize=thread)
+elseif(brdfrig_sanitize STREQUAL "fuzzer")
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "BRDFRIG_SANITIZE=fuzzer needs clang (libFuzzer): use the fuzz preset")
+  endif()
+  set(BRDFRIG_FUZZ ON)
+  # Every library gets libFuzzer's coverage instrumentation; only the fuzz targets link its
+  # main (fuzz/CMakeLists.txt adds -fsanitize=fuzzer to them).
+  target_compile_options(brdfrig_options INTERFACE -fsanitize=fuzzer-no-link
+                                                   -fsanitize=address,undefined
+                                                   -fno-omit-frame-pointer -O1
+                                                   -fno-sanitize-recover=undefined)
+  target_link_options(brdfrig_options INTERFACE -fsanitize=address,undefined)
+elseif(BRDFRIG_SANITIZE)
   target_compile_options(brdfrig_options INTERFACE -fsanitize=address,undefined
                                                    -fno-sanitize-recover=undefined
                                                    -fno-omit-frame-pointer -O1)
-  # GCC's -Wmaybe-uninitialized is unreliable with sanitizer instrumentation (false positives
-  # inside libstdc++'s std::regex/std::function at -O1); release builds keep the warning.
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
-    target_compile_options(brdfrig_options INTERFACE -Wno-maybe-uninitialized)
-  endif()
   target_link_options(brdfrig_options INTERFACE -fsanitize=address,undefined)
+endif()
+# GCC's -Wmaybe-uninitialized is unreliable with sanitizer instrumentation (false positives
+# inside libstdc++'s std::regex/std::function at -O1); release builds keep the warning.
+if(BRDFRIG_SANITIZE AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  target_compile_options(brdfrig_options INTERFACE -Wno-maybe-uninitialized)
 endif()
 
 # brdfrig_add_library(NAME SOURCES ... DEPS ...): the one way a folder declares its library,

@@ -52,6 +52,7 @@ bool IsInside(const fs::path& path, const fs::path& root) {
 struct Existing {
   std::string fingerprint;  // "" when there is no readable material
   std::vector<std::string> dropped;
+  std::vector<std::string> degraded;
 };
 
 Existing ExistingMaterial(const fs::path& material_file) {
@@ -61,9 +62,11 @@ Existing ExistingMaterial(const fs::path& material_file) {
     Existing existing{
         m.provenance.value("input_sha256", "") + "/" + m.provenance.value("software", ""), {}};
     for (const auto& p : m.provenance.value("positions", nlohmann::json::array())) {
+      const std::string name = "p" + std::to_string(p.value("index", -1)) + ": ";
       if (!p.value("used", true)) {
-        existing.dropped.push_back("p" + std::to_string(p.value("index", -1)) + ": " +
-                                   p.value("skipped", std::string("?")));
+        existing.dropped.push_back(name + p.value("skipped", std::string("?")));
+      } else if (p.contains("degraded")) {
+        existing.degraded.push_back(name + p.value("degraded", std::string("?")));
       }
     }
     return existing;
@@ -84,9 +87,9 @@ void BatchOptions::Validate() const {
 std::string BatchItem::StatusName() const {
   switch (status) {
     case Status::kDone:
-      return dropped.empty() ? "done" : "partial";
+      return Partial() ? "partial" : "done";
     case Status::kUpToDate:
-      return dropped.empty() ? "up to date" : "up to date, partial";
+      return Partial() ? "up to date, partial" : "up to date";
     case Status::kFailed:
       return "FAILED";
   }
@@ -97,7 +100,7 @@ int BatchExitStatus(const std::vector<BatchItem>& items) {
   int status = 0;
   for (const BatchItem& item : items) {
     if (item.status == BatchItem::Status::kFailed) return 1;
-    if (!item.dropped.empty()) status = 3;
+    if (item.Partial()) status = 3;
   }
   return status;
 }
@@ -152,7 +155,7 @@ bool NeedsReconstruct(const BatchItem& item, const BatchOptions& options) {
     const Existing existing = ExistingMaterial(item.material_file);
     if (existing.fingerprint != fingerprint + "/" + SoftwareName()) return true;
     // Under --strict an earlier partial material is a failure to report, not a skip.
-    return options.reconstruct.strict && !existing.dropped.empty();
+    return options.reconstruct.strict && (!existing.dropped.empty() || !existing.degraded.empty());
   } catch (const Error&) {
     return true;  // unreadable capture: processing it reports why
   }
@@ -167,14 +170,16 @@ void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
     const std::string fingerprint = CaptureFingerprint(capture);
     const Existing existing = ExistingMaterial(item.material_file);
     if (!options.force && existing.fingerprint == fingerprint + "/" + SoftwareName()) {
-      if (options.reconstruct.strict && !existing.dropped.empty()) {
+      if (options.reconstruct.strict && (!existing.dropped.empty() || !existing.degraded.empty())) {
         throw Error("the material of an earlier run lacks " +
-                    std::to_string(existing.dropped.size()) +
-                    " position(s), refused under --strict (nothing written)");
+                    std::to_string(existing.dropped.size()) + " position(s) and has " +
+                    std::to_string(existing.degraded.size()) +
+                    " degraded, refused under --strict (nothing written)");
       }
       item.status = BatchItem::Status::kUpToDate;
       item.message = "up to date";
       item.dropped = existing.dropped;
+      item.degraded = existing.degraded;
     } else {
       const fs::path out_dir = item.material_file.parent_path();
       if (IsInside(out_dir, item.input)) {
@@ -194,6 +199,7 @@ void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
       item.status = BatchItem::Status::kDone;
       item.ladder = result.ladder.Summary();
       item.dropped = result.Dropped();
+      item.degraded = result.Degraded();
       item.message = std::string(brdf::ModelKindName(result.material.kind)) +
                      (brdf::IsSliceKind(result.material.kind)
                           ? " (" + std::to_string(result.material.slices.size()) + " slices)"

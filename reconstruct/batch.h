@@ -30,13 +30,18 @@ struct BatchItem {
   // The material (done or up to date) lacks these positions: "p03: <reason>". Empty when
   // every captured position was used.
   std::vector<std::string> dropped;
+  // The material used these positions although their photos were damaged (NaN/Inf pixels):
+  // "p03: <reason>". Like a dropped position, this makes the item partial.
+  std::vector<std::string> degraded;
+  bool Partial() const { return !dropped.empty() || !degraded.empty(); }
   double seconds = 0;
   // "done", "partial" (a material written without some positions), "up to date", "FAILED"
   std::string StatusName() const;
 };
 
 // The exit status of `brdfrig reconstruct` for these items: 0 every capture complete, 3 every
-// material written but some positions dropped, 1 some capture failed (nothing written for it).
+// material written but some positions dropped or degraded, 1 some capture failed (nothing
+// written for it).
 int BatchExitStatus(const std::vector<BatchItem>& items);
 
 // Whether `dir` is a capture this command can read (a `brdfrig simulate` output or a session).

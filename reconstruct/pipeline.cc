@@ -50,6 +50,14 @@ void VerifyRecordedHashes(const CapturePosition& position) {
   }
 }
 
+// Why a used position's result is degraded: its photos held NaN or infinite pixels (a corrupt
+// or badly converted float image), masked as invalid; where they lie near the highlight they
+// cost the pose and light estimates accuracy nothing else reports.
+std::string DegradedReason(const PositionReport& report) {
+  return std::to_string(report.non_finite_pixels) +
+         " NaN or infinite pixels in its photos (masked as invalid)";
+}
+
 }  // namespace
 
 void ReconstructOptions::Validate() const {
@@ -122,12 +130,16 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   }
   std::sort(result.positions.begin(), result.positions.end(),
             [](const PositionReport& a, const PositionReport& b) { return a.index < b.index; });
-  if (const std::vector<std::string> dropped = result.Dropped();
-      options.strict && !dropped.empty()) {
-    std::string reasons;
-    for (const std::string& d : dropped) reasons += "\n  " + d;
-    throw Error(capture.name + ": " + std::to_string(dropped.size()) +
-                " position(s) dropped, refused under --strict (nothing written):" + reasons);
+  if (options.strict) {
+    std::vector<std::string> incomplete = result.Dropped();
+    for (const std::string& d : result.Degraded()) incomplete.push_back(d);
+    if (!incomplete.empty()) {
+      std::string reasons;
+      for (const std::string& d : incomplete) reasons += "\n  " + d;
+      throw Error(
+          capture.name + ": " + std::to_string(incomplete.size()) +
+          " position(s) dropped or degraded, refused under --strict (nothing written):" + reasons);
+    }
   }
   if (fit_positions.empty()) {
     std::string reasons;
@@ -171,6 +183,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     } else {
       if (!r.warnings.empty()) p["warnings"] = r.warnings;
       p["non_finite_pixels"] = r.non_finite_pixels;
+      if (r.non_finite_pixels > 0) p["degraded"] = DegradedReason(r);
       p["reprojection_rms_px"] = r.reprojection_rms_px;
       p["light_from_highlight"] = r.light.from_highlight;
       p["light_vs_nominal_deg"] = Degrees(r.light.nominal_disagreement_rad);
@@ -184,10 +197,21 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   }
   provenance["positions"] = positions_json;
   provenance["dropped_positions"] = result.Dropped().size();
+  provenance["degraded_positions"] = result.Degraded().size();
   material.provenance = provenance;
   // Validates the result like any reader would: a fit must never write an invalid model.
   (void)material.Model();
   return result;
+}
+
+std::vector<std::string> ReconstructionResult::Degraded() const {
+  std::vector<std::string> degraded;
+  for (const PositionReport& p : positions) {
+    if (p.used && p.non_finite_pixels > 0) {
+      degraded.push_back(PositionName(p.index) + ": " + DegradedReason(p));
+    }
+  }
+  return degraded;
 }
 
 std::vector<std::string> ReconstructionResult::Dropped() const {

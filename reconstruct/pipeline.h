@@ -40,8 +40,8 @@ struct ReconstructOptions {
   // Position indices measured but never fitted: every rung is scored on them (a plan's
   // validation photos).
   std::vector<int> validation_positions;
-  // Any dropped position is an error (Reconstruct throws; nothing is written): for batch
-  // scripts that must not accept a material from fewer positions than were captured.
+  // Any dropped or degraded position is an error (Reconstruct throws; nothing is written): for
+  // batch scripts that must not accept a material from fewer positions than were captured.
   bool strict = false;
   void Validate() const;
 };
@@ -58,6 +58,10 @@ struct ReconstructionResult {
   std::string Summary() const;  // a short human report
   // "p03: <reason>" for every position dropped (loader or measurement); empty = complete.
   std::vector<std::string> Dropped() const;
+  // "p03: <reason>" for every position used although its photos are damaged (NaN or infinite
+  // pixels, masked as invalid): the material is written but marked partial, like a dropped
+  // position (exit status 3, refused under --strict). Empty = every used photo was clean.
+  std::vector<std::string> Degraded() const;
 };
 
 using ProgressCallback = std::function<void(const std::string&)>;

@@ -133,7 +133,8 @@ DriveProfile LoadDriveProfile(const std::string& name_or_path,
     candidates.push_back(ShippedProfileDir() / (name_or_path + ".yaml"));
   }
   for (const auto& candidate : candidates) {
-    if (std::filesystem::exists(candidate)) {
+    std::error_code error;  // a name too long to look up is "not found", not an exception
+    if (std::filesystem::exists(candidate, error)) {
       return ParseDriveProfile(LoadYamlFile(candidate.string()));
     }
   }

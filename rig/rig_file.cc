@@ -28,8 +28,12 @@ geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_fil
   const YamlNode geometry = root.Required("geometry");
   if (geometry.IsScalar()) {
     const std::filesystem::path geometry_file = Resolve(base, geometry.AsString());
-    if (!std::filesystem::exists(geometry_file)) {
-      geometry.Fail("geometry file not found: " + geometry_file.string());
+    // The error_code form: a name the file system cannot even look up (a component over 255
+    // bytes) is this file's error, not an exception from <filesystem> (found by fuzz_rig_yaml).
+    std::error_code error;
+    if (!std::filesystem::exists(geometry_file, error)) {
+      geometry.Fail("geometry file not found: " + geometry_file.string() +
+                    (error ? " (" + error.message() + ")" : ""));
     }
     // A scene file (or any file) whose `rig:` section is the geometry; its other sections are
     // the simulator's business, so only `rig:` is read here.

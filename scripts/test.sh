@@ -1,13 +1,40 @@
 #!/usr/bin/env bash
-# The test command: installs missing packages, builds, and runs the whole ctest suite.
-#   scripts/test.sh            release build (what CI runs)
-#   scripts/test.sh asan       AddressSanitizer + UndefinedBehaviorSanitizer build
+# The test command (CI runs exactly this, see .ci/run): installs missing packages, then runs
+# in order, stopping at the first failure, and prints each step's time:
+#   release  release build, the whole ctest suite
+#   asan     AddressSanitizer + UndefinedBehaviorSanitizer build, the whole suite
+#   tsan     ThreadSanitizer build of the threaded parts' tests (ctest label "threads")
+#   fuzz     the libFuzzer targets (clang), each run for a smoke time over its seed corpus
+#            (BRDFRIG_FUZZ_SECONDS, default 25; see docs/fuzzing.md)
+# One or more steps alone:  scripts/test.sh release   (the quick check while developing)
+#                           scripts/test.sh asan tsan
 # Tests needing lab hardware (label "hardware") are excluded; run them with
 #   ctest --preset release -L hardware
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-preset="${1:-release}"
+steps=("$@")
+((${#steps[@]} > 0)) || steps=(release asan tsan fuzz)
 bash "$root/scripts/setup.sh"
-bash "$root/scripts/build.sh" "$preset"
 cd "$root"
-ctest --preset "$preset" -LE hardware
+times=()
+for step in "${steps[@]}"; do
+  start=$SECONDS
+  echo "test: step $step"
+  case "$step" in
+    release | debug | asan | tsan)
+      bash scripts/build.sh "$step"
+      ctest --preset "$step" -LE hardware
+      ;;
+    fuzz)
+      bash scripts/build.sh fuzz
+      bash scripts/fuzz.sh "${BRDFRIG_FUZZ_SECONDS:-25}"
+      ;;
+    *)
+      echo "test: unknown step '$step' (release, debug, asan, tsan or fuzz)" >&2
+      exit 2
+      ;;
+  esac
+  times+=("$step $((SECONDS - start)) s")
+  echo "test: step $step passed in $((SECONDS - start)) s"
+done
+echo "test: all passed; times: ${times[*]}"

@@ -30,7 +30,7 @@ void AddReconstructFlags(CLI::App* cmd, ReconstructFlags& flags) {
                   "validation)");
   cmd->add_flag("--strict", flags.strict,
                 "Fail a capture (write nothing for it) when any of its positions would be "
-                "dropped; exit status 1 instead of 3");
+                "dropped or degraded (NaN/Inf pixels); exit status 1 instead of 3");
   cmd->add_flag("--no-light-refine", flags.no_light_refine,
                 "Keep the light from the highlight's centroid (no joint refinement)");
 }
@@ -70,16 +70,20 @@ void RegisterReconstructCommands(CLI::App& app) {
                   item.input.string().c_str(), item.material_file.string().c_str(), item.seconds,
                   failed ? ": " : "", failed ? item.message.c_str() : "");
       for (const std::string& d : item.dropped) std::printf("           dropped %s\n", d.c_str());
+      for (const std::string& d : item.degraded) {
+        std::printf("           degraded %s\n", d.c_str());
+      }
       if (!item.ladder.empty()) std::printf("%s", item.ladder.c_str());
     }
-    // Exit statuses (docs/acquire.md): 0 complete, 3 written with dropped positions, 1 failed.
+    // Exit statuses (README): 0 complete, 3 written with dropped or degraded positions, 1 failed.
     switch (reconstruct::BatchExitStatus(items)) {
       case 0:
         return;
       case 3:
         std::fprintf(stderr,
-                     "brdfrig: warning: material(s) written without some positions (listed "
-                     "above); exit status 3 (--strict makes this a failure)\n");
+                     "brdfrig: warning: material(s) written without some positions or from "
+                     "damaged photos (listed above); exit status 3 (--strict makes this a "
+                     "failure)\n");
         throw CLI::RuntimeError(3);
       default: {
         int failed = 0;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "acquire/plan_check.h"
+#include "common/error.h"
 #include "tests/acquire/test_rig.h"
 
 namespace brdfrig::acquire {
@@ -109,6 +110,21 @@ exposures: [0.01]
 
 namespace brdfrig::acquire {
 namespace {
+
+// Found by fuzz_rig_yaml: a geometry file name the file system cannot look up (a component
+// over 255 bytes) escaped as std::filesystem::filesystem_error instead of rig.yaml's error.
+TEST(RigFileTest, UnlookableGeometryFileNameIsAFileErrorAtItsLine) {
+  const auto rig = testing::MakeTestRig("rig_long_name");
+  std::ofstream(rig.rig_file) << "geometry: " << std::string(300, 'g')
+                              << ".yaml\ncamera: {backend: sim, scene: scene.yaml}\n";
+  try {
+    rig::ReadRigDescription(rig.rig_file);
+    FAIL() << "an unlookable geometry file was accepted";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("rig.yaml:1:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("geometry file not found"), std::string::npos) << e.what();
+  }
+}
 
 TEST(PlanDesignTest, DesignedPlanIsResolvedForTheRigAndExplained) {
   const auto rig = testing::MakeTestRig(

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
 #include <regex>
 
 #include "common/atomic_file.h"
@@ -35,10 +36,24 @@ TEST(EvaluateJobTest, WritesAReportWithBothPsnrsAndTheBrdfError) {
   options.view_elevations_deg = {40, 75};
   options.view_phis_deg = {0, 90};
   const EvaluateSummary summary = RunEvaluate(options);
-  EXPECT_TRUE(fs::exists(summary.report_html));
-  EXPECT_TRUE(fs::exists(dir / "report" / "report.txt"));
-  EXPECT_TRUE(fs::exists(dir / "report" / "views" / "el40_phi90_diff.png"));
-  EXPECT_TRUE(fs::exists(dir / "report" / "spheres" / "light80_fit.png"));
+  // The figures decode, pair up in size, and show the difference a wrong material makes.
+  const fs::path views_dir = dir / "report" / "views", spheres_dir = dir / "report" / "spheres";
+  const cv::Mat photo = cv::imread((views_dir / "el40_phi90_photo.png").string());
+  const cv::Mat rendering = cv::imread((views_dir / "el40_phi90_render.png").string());
+  const cv::Mat diff = cv::imread((views_dir / "el40_phi90_diff.png").string());
+  ASSERT_FALSE(photo.empty());
+  EXPECT_EQ(rendering.size(), photo.size());
+  EXPECT_EQ(diff.size(), photo.size());
+  EXPECT_GT(cv::norm(photo, rendering, cv::NORM_L1), 0);
+  const cv::Mat truth = cv::imread((spheres_dir / "light80_truth.png").string());
+  const cv::Mat fit = cv::imread((spheres_dir / "light80_fit.png").string());
+  ASSERT_FALSE(truth.empty());
+  ASSERT_EQ(fit.size(), truth.size());
+  EXPECT_GT(cv::norm(truth, fit, cv::NORM_L1), 0);
+  // The page shows them.
+  const std::string html = ReadFileToString(summary.report_html);
+  EXPECT_NE(html.find("el40_phi90_diff.png"), std::string::npos);
+  EXPECT_NE(html.find("light80_fit.png"), std::string::npos);
   EXPECT_NE(summary.text.find("whole photo"), std::string::npos);
   EXPECT_NE(summary.text.find("sample only"), std::string::npos);
   EXPECT_NE(summary.text.find("Log-cosine error"), std::string::npos);

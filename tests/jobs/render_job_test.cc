@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 
 #include "common/error.h"
 #include "sim/image_io.h"
@@ -22,8 +23,10 @@ TEST(RenderJobTest, RendersASceneCapturePositionToExr) {
   options.output = fs::temp_directory_path() / "brdfrig_render_job.exr";
   const RenderJobSummary s = RunRenderJob(options);
   EXPECT_EQ(s.width, 1600);
+  EXPECT_EQ(s.height, 1200);
   const cv::Mat radiance = sim::ReadRadianceExr(options.output);
   ASSERT_EQ(radiance.cols, 1600);
+  ASSERT_EQ(radiance.rows, 1200);
   double lo, hi;
   cv::minMaxLoc(radiance.reshape(1), &lo, &hi);
   EXPECT_GE(lo, 0);
@@ -38,8 +41,17 @@ TEST(RenderJobTest, RendersAMeshToPng) {
   options.width = 160;
   options.height = 90;
   options.output = fs::temp_directory_path() / "brdfrig_render_job.png";
-  RunRenderJob(options);
-  EXPECT_GT(fs::file_size(options.output), 100u);
+  const RenderJobSummary s = RunRenderJob(options);
+  EXPECT_EQ(s.width, 160);
+  EXPECT_EQ(s.height, 90);
+  const cv::Mat picture = cv::imread(options.output.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(picture.cols, 160);
+  ASSERT_EQ(picture.rows, 90);
+  ASSERT_EQ(picture.channels(), 3);
+  // The sphere fills the middle of the frame, the background the corner.
+  const cv::Vec3b centre = picture.at<cv::Vec3b>(45, 80), corner = picture.at<cv::Vec3b>(0, 0);
+  EXPECT_NE(centre, corner);
+  EXPECT_GT(cv::norm(centre), 0);
   fs::remove(options.output);
 }
 

@@ -1,7 +1,7 @@
 // `brdfrig reconstruct` never degrades silently (issue 15, finding 5): a session frame changed
 // since capture is dropped with its reason in material.json and exit status 3, refused under
-// --strict (exit 1, nothing written); grey photos, NaN/Inf pixels and negative position
-// indices are reported, never used as if they were fine.
+// --strict (exit 1, nothing written); NaN/Inf pixels are masked and the position reported as
+// degraded (exit status 3 as well); grey photos and negative position indices are errors.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -148,6 +148,34 @@ TEST(ReconstructCli, NonFinitePixelsAreInvalidAndReported) {
   EXPECT_EQ(p0.value("non_finite_pixels", 0), 125) << p0;
   ASSERT_TRUE(p0.contains("warnings")) << p0;
   EXPECT_NE(p0["warnings"].dump().find("NaN or infinite"), std::string::npos) << p0;
+  // Used, but degraded: recorded as such, like a dropped position.
+  ASSERT_EQ(result.Degraded().size(), 1u);
+  EXPECT_NE(result.Degraded()[0].find("p00: 125 NaN or infinite"), std::string::npos)
+      << result.Degraded()[0];
+  EXPECT_NE(p0.value("degraded", "").find("125 NaN or infinite"), std::string::npos) << p0;
+  EXPECT_EQ(result.material.provenance["degraded_positions"], 1);
+
+  // Through the executable: the manifest names the EXR files; exit status 3, the position
+  // listed as degraded, and a failure under --strict.
+  const fs::path photos = capture.positions[0].frames[0].file.parent_path();
+  nlohmann::json manifest = ReadJson(photos / "capture.json");
+  for (auto& frame : manifest["frames"]) {
+    if (frame["position_index"] == 0) {
+      frame["file"] = fs::path(frame["file"].get<std::string>()).replace_extension(".exr").string();
+    }
+  }
+  WriteFileAtomically(photos / "capture.json", manifest.dump());
+  const fs::path out = dir / "fit" / "material.json";
+  const auto partial = RunBrdfrig("reconstruct --model seed " + Q(photos) + " -o " + Q(out));
+  EXPECT_EQ(partial.status, 3) << partial.output;
+  EXPECT_NE(partial.output.find("degraded p00"), std::string::npos) << partial.output;
+  EXPECT_EQ(ReadJson(out)["provenance"]["degraded_positions"], 1);
+  const fs::path strict_out = dir / "strict" / "material.json";
+  const auto strict =
+      RunBrdfrig("reconstruct --strict --model seed " + Q(photos) + " -o " + Q(strict_out));
+  EXPECT_EQ(strict.status, 1) << strict.output;
+  EXPECT_NE(strict.output.find("degraded"), std::string::npos) << strict.output;
+  EXPECT_FALSE(fs::exists(strict_out));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/error.h"
 #include "rig/backend_registry.h"
 #include "rig/hardware_backends.h"
 #include "rig/modbus_link.h"
@@ -102,6 +103,17 @@ TEST(ModbusSettingsTest, BadTransportUnknownKeyAndMissingProfileNameTheLine) {
   EXPECT_NE(AxisErrorOf("transport: tcp\nhost: h\nprofile: generic\nmin_deg: 10\nmax_deg: 5\n")
                 .find("rig.yaml:5:"),
             std::string::npos);
+}
+
+// A profile name too long for the file system to look up is "not found", not an exception
+// from <filesystem> (the same bug fuzz_rig_yaml found in rig.yaml's geometry name).
+TEST(DriveProfileTest, UnlookableNameIsNotFound) {
+  try {
+    LoadDriveProfile(std::string(300, 'p'), "");
+    FAIL() << "an unlookable profile name was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
