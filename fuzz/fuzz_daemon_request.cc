@@ -14,22 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kScene = R"(rig:
-  camera: {resolution: [64, 48], focal_px: [80, 80], position: [0, 0, 0.5],
-           look_at: [0, 0, 0], up: [0, 1, 0]}
-  light: {position: [0, 0, 0.6], intensity: 2.0}
-  axes:
-    - {name: camera_arm, moves: camera, direction: [1, 0, 0], range_deg: [-80, 80]}
-    - {name: light_arm, moves: light, direction: [1, 0, 0], range_deg: [-80, 80]}
-  target: {cutout: [0.1, 0.08], paper: [0.3, 0.3], paper_albedo: 0.7}
-sample:
-  brdf: {model: ggx, alpha: 0.1, f0: 0.5, diffuse: 0.1}
-  size: [0.2, 0.2]
-background: {albedo: 0.05}
-sensor: {gain: 10, shutter_speeds: [0.001, 0.01, 0.1]}
-render: {seed: 7}
-)";
-
 constexpr const char* kRig = R"(geometry: scene.yaml
 camera: {backend: sim, scene: scene.yaml}
 axes:
@@ -40,7 +24,7 @@ light: {backend: sim, scene: scene.yaml}
 
 brdfrig::acquire::DaemonConfig MakeConfig() {
   brdfrig::sim::RegisterSimBackends();
-  brdfrig::fuzz::WriteScratchFile("scene.yaml", kScene);
+  brdfrig::fuzz::WriteScratchFile("scene.yaml", brdfrig::fuzz::kSmallScene);
   brdfrig::acquire::DaemonConfig config;
   config.rig_file = brdfrig::fuzz::WriteScratchFile("rig.yaml", kRig);
   config.data_dir = brdfrig::fuzz::ScratchDir() / "data";
