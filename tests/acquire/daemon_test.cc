@@ -164,8 +164,11 @@ TEST_F(DaemonTest, CompleteSessionsAreHandedToTheConfiguredCommandAbortedOnesAre
   client.Submit("first", testing::SmallPlanYaml());
   daemon.WaitIdle();
   client.Submit("long", LongPlan());
+  // The finished first session's progress stays in the status until "long" starts, so the
+  // wait names the session: aborting before it runs would answer 409.
   WaitForStatus([](const json& s) {
-    return s.contains("progress") && s["progress"]["frames_recorded"].get<int>() >= 2;
+    return s["session"] == "long" && s.contains("progress") &&
+           s["progress"]["state"] != "done" && s["progress"]["frames_recorded"].get<int>() >= 2;
   });
   client.Abort("test abort");
   daemon.WaitIdle();
