@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/srgb.h"
 #include "sim/image_io.h"
 
 namespace brdfrig::evaluate {
@@ -29,9 +30,8 @@ cv::Mat ToDisplay8(const cv::Mat& radiance, double scale) {
     auto* px = out.ptr<cv::Vec3b>(y);
     for (int x = 0; x < radiance.cols; ++x) {
       for (int c = 0; c < 3; ++c) {
-        double v = std::isfinite(in[x][c]) ? std::clamp(scale * in[x][c], 0.0, 1.0) : 0.0;
-        v = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;  // sRGB
-        px[x][c] = static_cast<uchar>(std::lround(255 * v));
+        const double v = std::isfinite(in[x][c]) ? scale * in[x][c] : 0.0;
+        px[x][c] = static_cast<uchar>(std::lround(255 * SrgbEncode(v)));
       }
     }
   }

@@ -65,10 +65,6 @@ void SphereTestOptions::Validate() const {
   }
 }
 
-double SrgbEncode(double v) {
-  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-}
-
 std::string SphereTestResult::Report() const {
   std::ostringstream out;
   out << "sphere test: mean " << Fixed(mean_psnr_db, 2) << " dB (worst " << Fixed(worst_psnr_db, 2)

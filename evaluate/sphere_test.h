@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "brdf/brdf.h"
+#include "common/srgb.h"  // the protocol's encoding
 
 namespace brdfrig::evaluate {
 
@@ -52,8 +53,5 @@ cv::Mat SphereRadiance(const brdf::Brdf& brdf, double light_angle, int resolutio
 
 SphereTestResult SphereTest(const brdf::Brdf& truth, const brdf::Brdf& fitted,
                             const SphereTestOptions& options = {});
-
-// The protocol's sRGB encoding of a linear value in [0, 1].
-double SrgbEncode(double linear);
 
 }  // namespace brdfrig::evaluate

@@ -76,6 +76,7 @@ FoldFits FitAll(const std::vector<brdf::ModelKind>& kinds,
                 const std::vector<const PositionSamples*>& positions, const LadderOptions& options,
                 const std::vector<const brdf::MicrofacetModelParams*>& starts) {
   FoldFits out;
+  out.materials.reserve(kinds.size());  // fold_ggx points into it
   const brdf::MicrofacetModelParams* fold_ggx = nullptr;
   for (std::size_t r = 0; r < kinds.size(); ++r) {
     try {

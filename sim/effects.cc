@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/angles.h"
+#include "common/srgb.h"
 #include "sim/yaml_values.h"
 
 namespace brdfrig::sim {
@@ -114,7 +115,7 @@ double ResponseCurveEffect::Apply(double linear) const {
   const double x = std::clamp(linear, 0.0, 1.0);
   switch (curve) {
     case Curve::kSrgb:
-      return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+      return SrgbEncode(x);
     case Curve::kGamma:
       return std::pow(x, 1.0 / gamma);
     case Curve::kTable: {

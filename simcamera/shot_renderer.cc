@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/error.h"
+#include "common/srgb.h"
 #include "sim/linear_dng.h"
 #include "simcamera/ptp_codes.h"
 
@@ -12,9 +13,7 @@ namespace brdfrig::simcamera {
 namespace {
 
 std::uint8_t SrgbCode(float linear) {
-  const double v = std::clamp(static_cast<double>(linear), 0.0, 1.0);
-  const double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-  return static_cast<std::uint8_t>(std::lround(encoded * 255));
+  return static_cast<std::uint8_t>(std::lround(SrgbEncode(linear) * 255));
 }
 
 CapturedFile Jpeg(const cv::Mat& sensor, int quality) {
