@@ -195,6 +195,9 @@ std::string PlanCheckReport::ToJson() const {
       p["theta_h_deg"] = {Degrees(c.theta_h_min), Degrees(c.theta_h_max)};
       p["theta_d_deg"] = {Degrees(c.theta_d_min), Degrees(c.theta_d_max)};
       p["cells"] = c.cells.size();
+      p["shared_cells"] = c.shared_cells;
+      p["theta_h_bins"] = c.theta_h_bins;
+      p["shared_theta_h_bins"] = c.shared_theta_h_bins;
     }
     if (i < positions.size()) p["highlight_visible"] = positions[i].highlight_visible;
     list.push_back(p);
@@ -208,6 +211,8 @@ std::string PlanCheckReport::ToJson() const {
         {"covered_fraction", coverage.covered_fraction},
         {"covered_fraction_with_validation", coverage.covered_fraction_with_validation},
         {"theta_h_fraction", coverage.theta_h_fraction},
+        {"shared_cell_fraction", coverage.shared_cell_fraction},
+        {"shared_theta_h_fraction", coverage.shared_theta_h_fraction},
         {"theta_d_fraction", coverage.theta_d_fraction}};
   }
   if (!design.empty()) j["design"] = design;

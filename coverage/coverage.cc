@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -104,6 +105,41 @@ PositionCoverage PositionCoverageAt(const geometry::RigGeometry& rig,
   return c;
 }
 
+namespace {
+
+// PositionCoverage::shared_cells and the map's shared fractions, over the fitted positions.
+void ShareCells(CoverageMap* map) {
+  const int d_bins = map->grid.theta_d_bins;
+  std::map<int, int> cell_seers, h_seers;  // how many fitted positions see each cell / θh bin
+  std::vector<std::set<int>> h_of(map->positions.size());
+  for (std::size_t i = 0; i < map->positions.size(); ++i) {
+    const PositionCoverage& c = map->positions[i];
+    for (int cell : c.cells) h_of[i].insert(cell / d_bins);
+    if (c.validation) continue;
+    for (int cell : c.cells) ++cell_seers[cell];
+    for (int h : h_of[i]) ++h_seers[h];
+  }
+  long cells = 0, shared = 0, hs = 0, shared_h = 0;
+  for (std::size_t i = 0; i < map->positions.size(); ++i) {
+    PositionCoverage& c = map->positions[i];
+    const int self = c.validation ? 0 : 1;  // a fitted position counts itself once
+    c.shared_cells = 0;
+    for (int cell : c.cells) c.shared_cells += cell_seers[cell] > self;
+    c.theta_h_bins = static_cast<int>(h_of[i].size());
+    c.shared_theta_h_bins = 0;
+    for (int h : h_of[i]) c.shared_theta_h_bins += h_seers[h] > self;
+    if (c.validation) continue;
+    cells += static_cast<long>(c.cells.size());
+    shared += c.shared_cells;
+    hs += c.theta_h_bins;
+    shared_h += c.shared_theta_h_bins;
+  }
+  map->shared_cell_fraction = cells ? static_cast<double>(shared) / cells : 0;
+  map->shared_theta_h_fraction = hs ? static_cast<double>(shared_h) / hs : 0;
+}
+
+}  // namespace
+
 CoverageMap ComputeCoverage(const geometry::RigGeometry& rig,
                             const std::vector<geometry::AxisPositions>& positions,
                             const std::vector<bool>& validation, const GridOptions& grid) {
@@ -128,6 +164,7 @@ CoverageMap ComputeCoverage(const geometry::RigGeometry& rig,
   map.theta_h_fraction = static_cast<double>(h_bins.size()) / grid.theta_h_bins;
   map.theta_d_fraction = static_cast<double>(d_bins.size()) / grid.theta_d_bins;
   map.covered_fraction_with_validation = all.size() / total;
+  ShareCells(&map);
   return map;
 }
 
@@ -135,7 +172,8 @@ std::string CoverageMap::ToString() const {
   std::ostringstream out;
   out << "coverage in (theta_h, theta_d), " << grid.theta_h_bins << " x " << grid.theta_d_bins
       << " cells (theta_h sqrt-warped), " << grid.samples_per_side << "^2 cut-out points\n";
-  out << "position  role        theta_in  theta_out  theta_h range     theta_d range     cells\n";
+  out << "position  role        theta_in  theta_out  theta_h range     theta_d range     cells  "
+         "shared\n";
   char row[200];
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const PositionCoverage& c = positions[i];
@@ -144,10 +182,10 @@ std::string CoverageMap::ToString() const {
       std::snprintf(row, sizeof row, "%8zu  %-10s  not observed: %s\n", i, role, c.problem.c_str());
     } else {
       std::snprintf(row, sizeof row,
-                    "%8zu  %-10s  %7.1f°  %8.1f°  %5.1f° .. %5.1f°  %5.1f° .. %5.1f°  %5zu\n", i,
-                    role, Degrees(c.theta_in), Degrees(c.theta_out), Degrees(c.theta_h_min),
+                    "%8zu  %-10s  %7.1f°  %8.1f°  %5.1f° .. %5.1f°  %5.1f° .. %5.1f°  %5zu  %6d\n",
+                    i, role, Degrees(c.theta_in), Degrees(c.theta_out), Degrees(c.theta_h_min),
                     Degrees(c.theta_h_max), Degrees(c.theta_d_min), Degrees(c.theta_d_max),
-                    c.cells.size());
+                    c.cells.size(), c.shared_cells);
     }
     out << row;
   }
@@ -161,6 +199,11 @@ std::string CoverageMap::ToString() const {
   }
   std::snprintf(row, sizeof row, "; theta_h bins seen %.0f %%, theta_d bins seen %.0f %%\n",
                 100 * theta_h_fraction, 100 * theta_d_fraction);
+  out << row;
+  std::snprintf(row, sizeof row,
+                "seen by another fitted position too (\"shared\"): %.1f %% of the fitted "
+                "positions' cells, %.0f %% of their theta_h bins\n",
+                100 * shared_cell_fraction, 100 * shared_theta_h_fraction);
   out << row;
   return out.str();
 }

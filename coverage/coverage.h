@@ -55,6 +55,13 @@ struct PositionCoverage {
   double theta_d_min = 0, theta_d_max = 0;
   double theta_in = 0, theta_out = 0;  // at the cut-out centre (radians)
   std::vector<int> cells;              // occupied cell ids, ascending
+  // Of this position's cells and θh bins, how many another fitted position also sees (set by
+  // ComputeCoverage). Leave-one-position-out validation predicts a held-out photo from the
+  // others: only in the shared part does it judge how a model interpolates; elsewhere it judges
+  // extrapolation to a region no remaining photo sees, which the model fitted to every photo
+  // never has to do.
+  int shared_cells = 0;
+  int theta_h_bins = 0, shared_theta_h_bins = 0;
 };
 
 // Coverage of one position (whatever its role).
@@ -71,6 +78,9 @@ struct CoverageMap {
   // Fractions of the θh bins and of the θd bins seen at all by the fitted positions: how much of
   // a shared D(θh) and F(θd) the plan constrains.
   double theta_h_fraction = 0, theta_d_fraction = 0;
+  // Over the fitted positions: the fraction of their cells, and of their θh bins, that another
+  // fitted position also sees (PositionCoverage::shared_cells).
+  double shared_cell_fraction = 0, shared_theta_h_fraction = 0;
   // A table: per position the θh and θd ranges, cells, then the fractions.
   std::string ToString() const;
 };

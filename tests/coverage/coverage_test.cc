@@ -79,6 +79,28 @@ TEST(CoverageTest, ValidationPositionsDoNotCountAsFitted) {
   EXPECT_GT(map.covered_fraction_with_validation, map.covered_fraction);
 }
 
+TEST(CoverageTest, SharedCellsCountWhatAnotherFittedPositionAlsoSees) {
+  const auto plan = MirrorPlan();
+  // The same position twice: each sees only cells the other sees too.
+  const std::vector<geometry::AxisPositions> twice = {plan[0], plan[0]};
+  const CoverageMap same = ComputeCoverage(DefaultRig(), twice, {});
+  ASSERT_GT(same.positions[0].cells.size(), 0u);
+  EXPECT_EQ(same.positions[0].shared_cells, static_cast<int>(same.positions[0].cells.size()));
+  EXPECT_DOUBLE_EQ(same.shared_cell_fraction, 1);
+  EXPECT_DOUBLE_EQ(same.shared_theta_h_fraction, 1);
+  // Mirror photos 30° apart in θd share no cell, but their θh ranges (from 0) overlap.
+  const std::vector<geometry::AxisPositions> apart = {plan[0], plan[3]};
+  const CoverageMap distinct = ComputeCoverage(DefaultRig(), apart, {});
+  EXPECT_EQ(distinct.positions[0].shared_cells, 0);
+  EXPECT_DOUBLE_EQ(distinct.shared_cell_fraction, 0);
+  EXPECT_GT(distinct.shared_theta_h_fraction, 0.5);
+  // A validation position is not another fitted one: alone with it, a fitted one shares nothing.
+  const CoverageMap with_validation = ComputeCoverage(DefaultRig(), twice, {false, true});
+  EXPECT_EQ(with_validation.positions[0].shared_cells, 0);
+  EXPECT_EQ(with_validation.positions[1].shared_cells,
+            static_cast<int>(with_validation.positions[1].cells.size()));
+}
+
 TEST(DesignerTest, DefaultRigDesignBeatsTheMirrorPlanWithinConstraints) {
   const geometry::RigGeometry rig = DefaultRig();
   DesignOptions options;
