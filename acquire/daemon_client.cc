@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "acquire/local_socket.h"
+#include "common/utf8.h"
 
 namespace brdfrig::acquire {
 namespace {
@@ -84,7 +85,10 @@ nlohmann::json DaemonClient::Expect(DaemonReply reply) {
   return reply.body;
 }
 
-nlohmann::json DaemonClient::Submit(const std::string& name, const std::string& plan_text) {
+nlohmann::json DaemonClient::Submit(const std::string& name, const std::string& plan_text,
+                                    const std::string& plan_source) {
+  RequireUtf8(name, "session name");
+  RequireUtf8(plan_text, plan_source);
   return Expect(
       Request("POST", "/v1/sessions", nlohmann::json{{"name", name}, {"plan", plan_text}}.dump()));
 }

@@ -37,7 +37,11 @@ class DaemonClient {
                       const std::string& body = "");
 
   // The API's operations; throw DaemonError on an error status.
-  nlohmann::json Submit(const std::string& name, const std::string& plan_text);
+  // `plan_source` names the plan's text in errors (its file, for the command line); the name
+  // and the plan must be UTF-8 (they travel as JSON strings): anything else is refused here,
+  // at its line and column, before a request is made.
+  nlohmann::json Submit(const std::string& name, const std::string& plan_text,
+                        const std::string& plan_source = "plan");
   nlohmann::json Status();
   nlohmann::json Sessions();
   nlohmann::json Pause();

@@ -92,7 +92,7 @@ void RegisterDaemonCommands(CLI::App& app) {
   submit->add_flag("--follow", args->follow, "Show the progress until the daemon is idle");
   submit->callback([args] {
     acquire::DaemonClient client = Connect(*args);
-    const json reply = client.Submit(args->name, ReadFileToString(args->plan));
+    const json reply = client.Submit(args->name, ReadFileToString(args->plan), args->plan);
     std::printf("session %s queued (place %d)\n", args->name.c_str(), reply.value("place", 0));
     if (reply.contains("warnings")) {
       for (const json& w : reply["warnings"]) {

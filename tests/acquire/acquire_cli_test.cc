@@ -142,6 +142,16 @@ TEST(AcquireCliTest, DaemonAndItsClientCommands) {
   const Result traversal = Brdfrig("submit" + at + " --name ../x " + Q(rig.plan_file));
   EXPECT_EQ(traversal.status, 1);
   EXPECT_NE(traversal.output.find("invalid session name"), std::string::npos) << traversal.output;
+  // A plan that is not UTF-8 cannot travel as a JSON string: refused at its line and column,
+  // before a request (it used to end in an internal json error).
+  const fs::path latin1 = rig.dir / "latin1_plan.yaml";
+  std::ofstream(latin1) << "sample: s\n# caf\xe9\npositions: []\n";
+  const Result not_utf8 = Brdfrig("submit" + at + " --name d2 " + Q(latin1));
+  EXPECT_EQ(not_utf8.status, 1);
+  EXPECT_NE(not_utf8.output.find(latin1.string() + ":2:6: not UTF-8 text (byte 0xe9"),
+            std::string::npos)
+      << not_utf8.output;
+  EXPECT_FALSE(fs::exists(rig.dir / "data" / "d2"));
 
   kill(daemon, SIGTERM);
   EXPECT_EQ(Wait(daemon), 0);
