@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "common/error.h"
 #include "common/yaml_reader.h"
 #include "session/catalog_checks.h"
 #include "session/rig_snapshot.h"
@@ -14,10 +15,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
-geometry::AxisPositions AxesFromJson(const std::string& text) {
+// A JSON cell of the catalog, converted by `convert`; a cell that is not JSON, or not the JSON
+// this version writes, is an error naming the catalog and the cell (the catalog is input like
+// any file: a damaged or edited one must not end in an internal error).
+template <typename Convert>
+auto FromJsonCell(const fs::path& catalog, const std::string& cell, const std::string& text,
+                  Convert convert) {
+  try {
+    return convert(nlohmann::json::parse(text));
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(catalog.string(), cell + " holds '" + text.substr(0, 80) +
+                                          "', not what this version writes (" + e.what() + ")");
+  }
+}
+
+// {"axis": radians, ...}; anything else throws a json type_error.
+geometry::AxisPositions AxesFromJson(const nlohmann::json& j) {
   geometry::AxisPositions axes;
-  const nlohmann::json j = nlohmann::json::parse(text);
-  for (auto it = j.begin(); it != j.end(); ++it) axes[it.key()] = it.value().get<double>();
+  for (const auto& [name, value] : j.get<std::map<std::string, double>>()) axes[name] = value;
   return axes;
 }
 
@@ -55,19 +70,29 @@ SessionContents ReadSession(const fs::path& dir) {
     s.operator_name = q.Text(2);
     s.notes = q.Text(3);
     s.software_version = q.Text(4);
-    for (const auto& p : nlohmann::json::parse(q.Text(5))) {
-      s.planned_positions.push_back(AxesFromJson(p.dump()));
-    }
-    const nlohmann::json exposures = nlohmann::json::parse(q.Text(6));
-    auto_bracket = exposures.is_string();
-    if (!auto_bracket) explicit_bracket = exposures.get<std::vector<double>>();
+    s.planned_positions =
+        FromJsonCell(db_file, "session.positions_json", q.Text(5), [](const nlohmann::json& j) {
+          std::vector<geometry::AxisPositions> positions;
+          for (const nlohmann::json& p : j.get<std::vector<nlohmann::json>>()) {
+            positions.push_back(AxesFromJson(p));
+          }
+          return positions;
+        });
+    FromJsonCell(db_file, "session.exposures_json", q.Text(6), [&](const nlohmann::json& j) {
+      auto_bracket = j.is_string();
+      if (!auto_bracket) explicit_bracket = j.get<std::vector<double>>();
+      return 0;
+    });
   }
   s.planned_validation.assign(s.planned_positions.size(), false);
   {
     // Schema 2 records the validation positions in meta; schema 1 sessions have no such row.
     Statement q(db, "SELECT value FROM meta WHERE key = 'validation_positions'");
     if (q.Step()) {
-      for (const int index : nlohmann::json::parse(q.Text(0)).get<std::vector<int>>()) {
+      const auto indices =
+          FromJsonCell(db_file, "meta.validation_positions", q.Text(0),
+                       [](const nlohmann::json& j) { return j.get<std::vector<int>>(); });
+      for (const int index : indices) {
         if (index >= 0 && index < static_cast<int>(s.planned_validation.size())) {
           s.planned_validation[static_cast<std::size_t>(index)] = true;
         }
@@ -97,7 +122,7 @@ SessionContents ReadSession(const fs::path& dir) {
       RecordedFrame f;
       f.position_index = static_cast<int>(q.Int(0));
       f.bracket_index = static_cast<int>(q.Int(1));
-      f.axis_readings = AxesFromJson(q.Text(2));
+      f.axis_readings = FromJsonCell(db_file, "frames.axis_readings_json", q.Text(2), AxesFromJson);
       f.requested_exposure_s = q.Double(3);
       f.exposure_s = q.Double(4);
       f.file = CatalogFile(s.dir, "frames", q.Text(5), "frames.file");
@@ -106,7 +131,7 @@ SessionContents ReadSession(const fs::path& dir) {
       // Auto-bracketing decides a bracket when its position is captured; only a complete
       // position's bracket is known for sure.
       if (auto_bracket && q.Int(8) == 0 && complete.count(f.position_index) &&
-          f.position_index < static_cast<int>(s.planned_brackets.size())) {
+          f.position_index >= 0 && f.position_index < static_cast<int>(s.planned_brackets.size())) {
         s.planned_brackets[f.position_index].push_back(f.requested_exposure_s);
       }
       s.frames.push_back(std::move(f));
