@@ -18,7 +18,9 @@
 // best rung by sphere). How the default rule was chosen; run it before changing that rule.
 //
 //   bench_model_ceiling [--set analytic|measured|all] [--materials a,b,...] [--positions N]
-//                       [--choice]
+//                       [--choice [--validation N]]
+// --validation N adds N validation positions (coverage::DesignOptions::validation) to the plan
+// of --choice and compares the folds alone, the validation photos alone and both (the product).
 #include <unistd.h>
 #include <algorithm>
 #include <array>
@@ -187,19 +189,46 @@ double TrimmedScore(std::vector<double> v) {
   return MeanScore(v);
 }
 
+// A rule for turning a rung's held-out scores into one score (lower is better).
+struct ChoiceRule {
+  const char* name;
+  double (*score)(const reconstruct::RungResult&);
+};
+
+// Without validation positions: three ways of combining the folds. With them: the folds alone,
+// the validation photos alone, and the product's rule (the mean over both, RungResult::score).
+const std::vector<ChoiceRule>& ChoiceRules(bool validation) {
+  static const std::vector<ChoiceRule> folds = {
+      {"mean rule", [](const reconstruct::RungResult& r) { return MeanScore(r.fold_scores); }},
+      {"median rule", [](const reconstruct::RungResult& r) { return MedianScore(r.fold_scores); }},
+      {"trimmed rule",
+       [](const reconstruct::RungResult& r) { return TrimmedScore(r.fold_scores); }}};
+  static const std::vector<ChoiceRule> with_validation = {
+      {"folds only", [](const reconstruct::RungResult& r) { return MeanScore(r.fold_scores); }},
+      {"validation only",
+       [](const reconstruct::RungResult& r) { return MeanScore(r.validation_scores); }},
+      {"folds + validation (product)", [](const reconstruct::RungResult& r) { return r.score; }}};
+  return validation ? with_validation : folds;
+}
+
 // One material: every rung's sphere mean and the rung each rule chooses among the rungs that
-// conserve energy. Returns the sphere mean per rule (mean, median, trimmed, oracle).
-std::array<double, 4> CompareChoices(const jobs::StudyMaterial& material,
-                                     const jobs::StudyPlan& plan, const brdf::Brdf& truth) {
-  const auto captured = CapturedSamples(
+// conserve energy. The last `validation` positions of the plan are validation positions.
+// Returns the sphere mean per rule, then the oracle's.
+std::vector<double> CompareChoices(const jobs::StudyMaterial& material,
+                                   const jobs::StudyPlan& plan, int validation,
+                                   const brdf::Brdf& truth) {
+  auto captured = CapturedSamples(
       material, plan,
       fs::temp_directory_path() / ("brdfrig_model_ceiling." + std::to_string(getpid())));
+  std::vector<reconstruct::PositionSamples> held(captured.end() - validation, captured.end());
+  captured.resize(captured.size() - validation);
   const reconstruct::LadderResult ladder =
-      reconstruct::FitLadder(captured, {}, reconstruct::LadderOptions{});
-  using Rule = double (*)(std::vector<double>);
-  const Rule rules[3] = {MeanScore, MedianScore, TrimmedScore};
-  std::array<int, 4> chosen{-1, -1, -1, -1};
-  std::array<double, 4> best_score{1e300, 1e300, 1e300, -1e300};
+      reconstruct::FitLadder(captured, held, reconstruct::LadderOptions{});
+  const std::vector<ChoiceRule>& rules = ChoiceRules(validation > 0);
+  const std::size_t k_oracle = rules.size();
+  std::vector<int> chosen(rules.size() + 1, -1);
+  std::vector<double> best_score(rules.size() + 1, 1e300);
+  best_score[k_oracle] = -1e300;
   std::vector<double> sphere(ladder.rungs.size(), NAN);
   std::printf("| %s |", material.name.c_str());
   for (std::size_t r = 0; r < ladder.rungs.size(); ++r) {
@@ -209,26 +238,25 @@ std::array<double, 4> CompareChoices(const jobs::StudyMaterial& material,
       continue;
     }
     sphere[r] = evaluate::SphereTest(truth, *rung.material.Model()).mean_psnr_db;
-    std::printf(" %s (%s%s) |", Fixed(sphere[r], 1).c_str(),
-                Fixed(MeanScore(rung.fold_scores), 3).c_str(),
+    std::printf(" %s (%s%s) |", Fixed(sphere[r], 1).c_str(), Fixed(rung.score, 3).c_str(),
                 rung.ConservesEnergy() ? "" : ", creates energy");
     if (!rung.ConservesEnergy()) continue;
-    for (int k = 0; k < 3; ++k) {
-      const double score = rules[k](rung.fold_scores);
+    for (std::size_t k = 0; k < rules.size(); ++k) {
+      const double score = rules[k].score(rung);
       if (score < best_score[k]) {
         best_score[k] = score;
         chosen[k] = static_cast<int>(r);
       }
     }
-    if (sphere[r] > best_score[3]) {
-      best_score[3] = sphere[r];
-      chosen[3] = static_cast<int>(r);
+    if (sphere[r] > best_score[k_oracle]) {
+      best_score[k_oracle] = sphere[r];
+      chosen[k_oracle] = static_cast<int>(r);
     }
   }
-  std::array<double, 4> out{};
-  for (int k = 0; k < 4; ++k) {
-    out[k] = chosen[k] >= 0 ? sphere[chosen[k]] : NAN;
-    std::printf(" %s |", chosen[k] >= 0 ? brdf::ModelKindName(ladder.rungs[chosen[k]].kind) : "-");
+  std::vector<double> out;
+  for (int c : chosen) {
+    out.push_back(c >= 0 ? sphere[c] : NAN);
+    std::printf(" %s |", c >= 0 ? brdf::ModelKindName(ladder.rungs[c].kind) : "-");
   }
   std::printf("\n");
   std::fflush(stdout);
@@ -273,6 +301,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> only;
   int count = 6;
   bool choice = false;
+  int validation = 0;
   for (int i = 1; i < argc; ++i) {
     const bool more = i + 1 < argc;
     if (std::strcmp(argv[i], "--set") == 0 && more) {
@@ -283,10 +312,12 @@ int main(int argc, char** argv) {
       count = std::stoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--choice") == 0) {
       choice = true;
+    } else if (std::strcmp(argv[i], "--validation") == 0 && more) {
+      validation = std::stoi(argv[++i]);
     } else {
       std::fprintf(stderr,
                    "usage: bench_model_ceiling [--set analytic|measured|all] "
-                   "[--materials a,b] [--positions N] [--choice]\n");
+                   "[--materials a,b] [--positions N] [--choice [--validation N]]\n");
       return 2;
     }
   }
@@ -301,13 +332,25 @@ int main(int argc, char** argv) {
   const sim::Scene scene = sim::LoadScene(source / "sim/scenes/default.yaml");
   const jobs::StudyPlan plan = jobs::DesignedPlan(count);
   if (choice) {
+    coverage::DesignOptions design;
+    design.count = count;
+    design.validation = validation;
+    const coverage::PlanDesign designed = coverage::DesignPlan(scene.rig, design);
+    const jobs::StudyPlan choice_plan{plan.name + (validation ? " + " + std::to_string(validation) +
+                                                                   " validation"
+                                                             : std::string()),
+                                      designed.Positions()};
+    const std::vector<ChoiceRule>& rules = ChoiceRules(validation > 0);
     std::printf(
-        "Sphere mean (dB) of every rung fitted to the captured data, (mean fold score); the "
+        "Sphere mean (dB) of every rung fitted to the captured data, (its held-out score); the "
         "rung each rule chooses among those that conserve energy.\nPlan: %s\n\n| material "
-        "| seed | seed_constrained | ggx | beckmann | microfacet | mean rule | median rule "
-        "| trimmed rule | oracle |\n|---|---|---|---|---|---|---|---|---|---|\n",
-        plan.name.c_str());
-    std::array<double, 4> sums{};
+        "| seed | seed_constrained | ggx | beckmann | microfacet |",
+        choice_plan.name.c_str());
+    for (const ChoiceRule& rule : rules) std::printf(" %s |", rule.name);
+    std::printf(" oracle |\n|---|---|---|---|---|---|");
+    for (std::size_t k = 0; k <= rules.size(); ++k) std::printf("---|");
+    std::printf("\n");
+    std::vector<double> sums(rules.size() + 1, 0.0);
     int n = 0;
     for (const jobs::StudyMaterial& material : materials) {
       if (!only.empty() && std::find(only.begin(), only.end(), material.name) == only.end()) {
@@ -315,13 +358,13 @@ int main(int argc, char** argv) {
       }
       const YamlNode root = LoadYamlString("brdf: " + material.brdf_yaml, material.name);
       const auto truth = sim::ParseSampleBrdf(root.Required("brdf"), source / "sim/scenes");
-      const std::array<double, 4> got = CompareChoices(material, plan, *truth);
-      for (int k = 0; k < 4; ++k) sums[k] += got[k];
+      const std::vector<double> got = CompareChoices(material, choice_plan, validation, *truth);
+      for (std::size_t k = 0; k < got.size(); ++k) sums[k] += got[k];
       ++n;
     }
-    std::printf("| **mean of %d** | | | | | | %s | %s | %s | %s |\n", n,
-                Fixed(sums[0] / n, 1).c_str(), Fixed(sums[1] / n, 1).c_str(),
-                Fixed(sums[2] / n, 1).c_str(), Fixed(sums[3] / n, 1).c_str());
+    std::printf("| **mean of %d** | | | | | |", n);
+    for (double s : sums) std::printf(" %s |", Fixed(s / n, 1).c_str());
+    std::printf("\n");
     return 0;
   }
   const brdf::ModelKind kinds[] = {brdf::ModelKind::kGgx, brdf::ModelKind::kBeckmann,
