@@ -4,7 +4,9 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "common/angles.h"
 #include "common/error.h"
+#include "common/format.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -20,6 +22,10 @@ void LightOptions::Validate() const {
   if (!(min_peak_ratio > 1)) throw OptionsError("LightOptions.min_peak_ratio must be > 1");
   if (!(edge_inset >= 0 && edge_inset < 0.4)) {
     throw OptionsError("LightOptions.edge_inset must be in [0, 0.4)");
+  }
+  if (!(max_nominal_disagreement_deg > 0 && max_nominal_disagreement_deg <= 90)) {
+    throw OptionsError("LightOptions.max_nominal_disagreement_deg = " +
+                       std::to_string(max_nominal_disagreement_deg) + "; must be in (0, 90]");
   }
 }
 
@@ -135,11 +141,22 @@ LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const
   if (!x) return estimate;
   const geometry::Vec3 v = (view.camera_centre() - *x).normalized();
   const geometry::Vec3 l(-v.x(), -v.y(), v.z());  // mirror of v about the normal +z
+  const double disagreement = AngleBetween(l, nominal_light - *x);
+  if (disagreement > Radians(options.max_nominal_disagreement_deg)) {
+    estimate.warnings.push_back(
+        "the brightest spot (" + Fixed(estimate.highlight_px.x, 0) + ", " +
+        Fixed(estimate.highlight_px.y, 0) + " px) would put the light " +
+        Fixed(Degrees(disagreement), 1) + "° from the rig's nominal light (more than " +
+        Fixed(options.max_nominal_disagreement_deg, 1) +
+        "°): not the mirror highlight; nominal light used (if the rig file is off, fix it)");
+    estimate.highlight_px = {-1, -1};
+    return estimate;
+  }
   const double distance = (nominal_light - *x).norm();
   estimate.position = *x + l * distance;
   estimate.highlight_in_world = *x;
   estimate.from_highlight = true;
-  estimate.nominal_disagreement_rad = AngleBetween(l, nominal_light - *x);
+  estimate.nominal_disagreement_rad = disagreement;
   return estimate;
 }
 

@@ -2,7 +2,12 @@
 // the ray from the camera through it, reflected about the sample normal, points at the light.
 // The direction is measured; the distance along it is taken from the rig's nominal light (one
 // highlight cannot tell it). When there is no usable highlight (a matte sample, the highlight
-// outside the cut-out or at its edge), the nominal light is used and a warning says so.
+// outside the cut-out or at its edge), the nominal light is used and a warning says so. So it is
+// when the peak found would put the light further from the rig's nominal light than a rig is
+// ever off (`max_nominal_disagreement_deg`): far from the mirror configuration a photo's
+// brightest spot is the lobe's tail or Fresnel rising towards one side, not a mirror highlight,
+// and taking it for one moved the light by 56° (nickel, the designed plan's large-θh photo at
+// 1600×1200).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -19,6 +24,10 @@ struct LightOptions {
   double min_peak_ratio = 2.0;  // peak / median luminance in the cut-out below which there is
                                 // no highlight to speak of
   double edge_inset = 0.03;     // fraction of the cut-out's size ignored along its border
+  // Largest angle (at the highlight) between the measured and the nominal light direction for
+  // the peak to count as the mirror highlight; a rig that is off by more needs its rig file
+  // fixed, which the warning says.
+  double max_nominal_disagreement_deg = 10;
   void Validate() const;
 };
 
