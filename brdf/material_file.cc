@@ -1,10 +1,13 @@
 #include "brdf/material_file.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
 #include "brdf/json_reader.h"
 #include "common/atomic_file.h"
+#include "common/base64.h"
 #include "common/error.h"
 
 namespace brdfrig::brdf {
@@ -154,6 +157,83 @@ json SerializeMicrofacet(const MicrofacetModelParams& p) {
   return m;
 }
 
+// The table as 16-bit codes over its own range: q spans about ln ε .. 10, so a step is about
+// 3e-4 in q, 0.03 % in f, far below what a capture resolves; 2 bytes a node keeps a 64 × 32 × 8
+// table near 130 KB of base64 (a file to mail).
+json SerializeTable(const RusinkiewiczGrid& grid, const TableValues& q) {
+  double lo = q[0][0], hi = q[0][0];
+  for (const auto& channel : q) {
+    for (const double x : channel) lo = std::min(lo, x), hi = std::max(hi, x);
+  }
+  const double scale = hi > lo ? (hi - lo) / 65535 : 1;
+  json t = {{"grid",
+             {{"theta_h", grid.theta_h},
+              {"theta_d", grid.theta_d},
+              {"phi_d", grid.phi_d},
+              {"epsilon", grid.epsilon},
+              {"cos_floor", grid.cos_floor}}},
+            {"encoding", "uint16-base64"},
+            {"offset", lo},
+            {"scale", scale}};
+  for (int c = 0; c < 3; ++c) {
+    std::vector<std::uint8_t> bytes(2 * q[c].size());
+    for (std::size_t i = 0; i < q[c].size(); ++i) {
+      const auto u = static_cast<std::uint16_t>(std::lround(std::clamp((q[c][i] - lo) / scale,
+                                                                       0.0, 65535.0)));
+      bytes[2 * i] = static_cast<std::uint8_t>(u & 0xff);
+      bytes[2 * i + 1] = static_cast<std::uint8_t>(u >> 8);
+    }
+    t[kChannelNames[c]] = Base64Encode(bytes);
+  }
+  return t;
+}
+
+void ParseTable(const Reader& r, const json& doc, RusinkiewiczGrid* grid, TableValues* q) {
+  const json& t = r.Field(doc, "", "table");
+  const json& g = r.Field(t, "table", "grid");
+  const auto count = [&](const char* key) {
+    const double x = r.Number(g, "table.grid", key);
+    if (x != std::floor(x) || x < 2 || x > 512) {
+      r.Fail(Reader::Join("table.grid", key), "expected a whole number in [2, 512]");
+    }
+    return static_cast<int>(x);
+  };
+  grid->theta_h = count("theta_h");
+  grid->theta_d = count("theta_d");
+  grid->phi_d = count("phi_d");
+  grid->epsilon = r.Number(g, "table.grid", "epsilon");
+  grid->cos_floor = r.Number(g, "table.grid", "cos_floor");
+  try {
+    grid->Validate();
+  } catch (const Error& e) {
+    r.Fail("table.grid", e.what());
+  }
+  if (r.String(t, "table", "encoding") != "uint16-base64") {
+    r.Fail("table.encoding", "expected \"uint16-base64\"");
+  }
+  const double offset = r.Number(t, "table", "offset");
+  const double scale = r.Number(t, "table", "scale");
+  if (!(scale > 0)) r.Fail("table.scale", "must be > 0");
+  for (int c = 0; c < 3; ++c) {
+    const std::string field = Reader::Join("table", kChannelNames[c]);
+    const auto bytes = Base64Decode(r.String(t, "table", kChannelNames[c]));
+    if (!bytes) r.Fail(field, "not base64");
+    if (bytes->size() != 2 * static_cast<std::size_t>(grid->Cells())) {
+      r.Fail(field, "holds " + std::to_string(bytes->size() / 2) + " values, the grid has " +
+                        std::to_string(grid->Cells()));
+    }
+    (*q)[c].resize(grid->Cells());
+    for (int i = 0; i < grid->Cells(); ++i) {
+      (*q)[c][i] = offset + scale * ((*bytes)[2 * i] | ((*bytes)[2 * i + 1] << 8));
+    }
+  }
+  try {
+    RusinkiewiczTable check(*grid, *q);
+  } catch (const Error& e) {
+    r.Fail("table", e.what());
+  }
+}
+
 Distribution DistributionOf(ModelKind kind) {
   return kind == ModelKind::kGgx        ? Distribution::kGgx
          : kind == ModelKind::kBeckmann ? Distribution::kBeckmann
@@ -174,6 +254,8 @@ const char* ModelKindName(ModelKind kind) {
       return "ggx";
     case ModelKind::kBeckmann:
       return "beckmann";
+    case ModelKind::kPrior:
+      return "prior";
   }
   return "?";
 }
@@ -193,6 +275,7 @@ bool IsSliceKind(ModelKind kind) {
 
 std::shared_ptr<const Brdf> Material::Model() const {
   if (IsSliceKind(kind)) return std::make_shared<SliceModel>(slices);
+  if (kind == ModelKind::kPrior) return std::make_shared<RusinkiewiczTable>(table_grid, table);
   if (microfacet.distribution != DistributionOf(kind)) {
     throw Error(std::string("material of kind '") + ModelKindName(kind) +
                 "' holds a distribution of kind '" + DistributionName(microfacet.distribution) +
@@ -241,6 +324,10 @@ Material ParseMaterial(const std::string& json_text, const std::string& source_n
   if (doc.contains("fit")) material.fit = doc.at("fit");
   if (doc.contains("ladder")) material.ladder = doc.at("ladder");
   if (doc.contains("provenance")) material.provenance = doc.at("provenance");
+  if (material.kind == ModelKind::kPrior) {
+    ParseTable(r, doc, &material.table_grid, &material.table);
+    return material;
+  }
   if (!IsSliceKind(material.kind)) {
     material.microfacet = ParseMicrofacet(r, doc, material.kind);
     return material;
@@ -301,6 +388,8 @@ std::string SerializeMaterial(const Material& material) {
       slices.push_back(slice);
     }
     doc["slices"] = slices;
+  } else if (material.kind == ModelKind::kPrior) {
+    doc["table"] = SerializeTable(material.table_grid, material.table);
   } else {
     doc["microfacet"] = SerializeMicrofacet(material.microfacet);
   }

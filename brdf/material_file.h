@@ -1,10 +1,14 @@
 // material.json: a fitted model of one kind of the model ladder plus how it was obtained.
 //   {"format": "brdfrig-material", "version": 2,
-//    "kind": "seed" | "seed_constrained" | "microfacet" | "ggx" | "beckmann",
+//    "kind": "seed" | "seed_constrained" | "microfacet" | "ggx" | "beckmann" | "prior",
 //    "slices": [{"theta_in": .., "red": {"A1":..,"A2":..,"h":..,"x0":..}, "green": .., "blue": ..,
 //                "diagnostics": {...}}, ...],                      (seed kinds)
 //    "microfacet": {"diffuse": [r,g,b], "f0": [r,g,b], "alpha": .., "fresnel_knots": [..],
-//                   "log_d": [..], "max_theta_h": .., "shadowing_alpha": ..},  (other kinds)
+//                   "log_d": [..], "max_theta_h": .., "shadowing_alpha": ..},  (microfacet kinds)
+//    "table": {"grid": {"theta_h": 64, "theta_d": 32, "phi_d": 8, "epsilon": .., "cos_floor": ..},
+//              "encoding": "uint16-base64", "offset": .., "scale": ..,
+//              "red": "<base64>", "green": .., "blue": ..},              (prior: a Rusinkiewicz
+//              table, brdf/rusinkiewicz_table.h; q = offset + scale · u per little-endian uint16 u)
 //    "fit": {...}, "ladder": [...], "provenance": {...}}
 // Version 1 files ({"format": "brdfrig-slices", "version": 1, "slices": ..}) still load, as
 // kind "seed". Reading validates everything and names the offending field, e.g.
@@ -18,6 +22,7 @@
 #include <vector>
 
 #include "brdf/microfacet_model.h"
+#include "brdf/rusinkiewicz_table.h"
 #include "brdf/slice_model.h"
 
 namespace brdfrig::brdf {
@@ -33,12 +38,12 @@ struct SliceDiagnostics {
 };
 
 // The rungs of the model ladder (docs/design.md): the seed's slices, the same slices with one
-// shared diffuse level and energy conservation, the data-driven microfacet model, and the
-// analytic baselines.
-enum class ModelKind { kSeed, kSeedConstrained, kMicrofacet, kGgx, kBeckmann };
-inline constexpr ModelKind kAllModelKinds[] = {ModelKind::kSeed, ModelKind::kSeedConstrained,
+// shared diffuse level and energy conservation, the data-driven microfacet model, the
+// analytic baselines, and the measured prior's table (prior/).
+enum class ModelKind { kSeed, kSeedConstrained, kMicrofacet, kGgx, kBeckmann, kPrior };
+inline constexpr ModelKind kAllModelKinds[] = {ModelKind::kSeed,     ModelKind::kSeedConstrained,
                                                ModelKind::kMicrofacet, ModelKind::kGgx,
-                                               ModelKind::kBeckmann};
+                                               ModelKind::kBeckmann, ModelKind::kPrior};
 const char* ModelKindName(ModelKind kind);
 // Throws brdfrig::Error listing the kinds for an unknown name.
 ModelKind ParseModelKind(const std::string& name);
@@ -48,7 +53,9 @@ struct Material {
   ModelKind kind = ModelKind::kSeed;
   std::vector<Slice> slices;                        // slice kinds: sorted by theta_in
   std::vector<SliceDiagnostics> diagnostics;        // slice kinds: empty, or one per slice
-  MicrofacetModelParams microfacet;                 // the other kinds (distribution matches kind)
+  MicrofacetModelParams microfacet;                 // microfacet kinds (distribution matches kind)
+  RusinkiewiczGrid table_grid;                      // prior: the table's grid and values
+  TableValues table;
   nlohmann::json fit = nlohmann::json::object();    // the fit's diagnostics (non-slice kinds)
   nlohmann::json ladder = nlohmann::json::array();  // every rung's validation scores
   nlohmann::json provenance = nlohmann::json::object();

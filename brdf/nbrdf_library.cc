@@ -1,6 +1,9 @@
 #include "brdf/nbrdf_library.h"
 
 #include <algorithm>
+#include <sstream>
+
+#include "common/atomic_file.h"
 
 #include "common/error.h"
 
@@ -17,6 +20,17 @@ std::vector<std::string> NbrdfMaterialNames() {
     if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
   }
   std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::vector<std::string> NbrdfStudyMaterialNames() {
+  std::istringstream in(ReadFileToString(NbrdfDirectory() / "study_set.txt"));
+  std::vector<std::string> names;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    (void)NbrdfMaterialPath(line);  // a listed name must be a shipped material
+    names.push_back(line);
+  }
   return names;
 }
 

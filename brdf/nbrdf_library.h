@@ -16,6 +16,10 @@ std::filesystem::path NbrdfDirectory();
 // Names of the shipped materials (file names without ".json"), sorted.
 std::vector<std::string> NbrdfMaterialNames();
 
+// The study set (data/materials/nbrdf/study_set.txt): the 27 materials the tests and the
+// pre-prior studies iterate over; the other shipped materials train the prior.
+std::vector<std::string> NbrdfStudyMaterialNames();
+
 // The file of a shipped material. Throws brdfrig::Error listing the known names when `name` is
 // not one of them (a name is never a path: "../x" is refused).
 std::filesystem::path NbrdfMaterialPath(const std::string& name);

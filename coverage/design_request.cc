@@ -14,6 +14,13 @@ DesignOptions ParseDesignRequest(const YamlNode& node) {
     if (auto v = node.Optional(key)) *field = v->InRange(v->AsDouble(), lo, hi);
   };
   // The same bounds as DesignOptions::Validate, checked here so that the error names the key.
+  if (auto v = node.Optional("objective")) {
+    o.objective = v->AsString();
+    if (o.objective != "prior" && o.objective != "coverage") {
+      v->Fail("expected 'prior' or 'coverage'");
+    }
+  }
+  integer("prior_components", &o.prior_components, 1, 4096);
   integer("count", &o.count, 1, 24);
   integer("validation", &o.validation, 0, 24);
   real("step_deg", &o.step_deg, 1, 45);

@@ -2,7 +2,8 @@
 //
 //   positions: {design: {count: 6, validation: 1}}
 //
-// Every DesignOptions field can be given by its name (count, validation, step_deg,
+// Every DesignOptions field can be given by its name (objective: prior or coverage,
+// prior_components, count, validation, step_deg,
 // max_candidates, refine_passes, theta_h_reach_bins, theta_d_reach_bins, min_separation_deg,
 // max_view_deg, max_light_deg, image_margin_px, peak_theta_h_deg, retro_theta_d_deg,
 // grazing_theta_in_deg, cell_weight, theta_h_weight, theta_d_weight, requirement_weight). count ≤

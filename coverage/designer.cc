@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 #include "common/error.h"
+#include "coverage/prior_objective.h"
+#include "prior/measured_prior.h"
 
 namespace brdfrig::coverage {
 namespace {
@@ -26,6 +30,7 @@ struct Candidate {
   geometry::AxisPositions axes;
   PositionCoverage coverage;
   std::vector<int> elements;
+  Eigen::MatrixXd information;  // the prior objective's (prior_objective.h)
 };
 
 class Objective {
@@ -136,13 +141,75 @@ std::vector<geometry::AxisPositions> CandidateGrid(const geometry::RigGeometry& 
 }
 
 bool MakeCandidate(const geometry::RigGeometry& rig, const geometry::AxisPositions& axes,
-                   const DesignOptions& o, const Objective& objective, Candidate* c) {
+                   const DesignOptions& o, const Objective& objective, Candidate* c,
+                   const PriorObjective* prior = nullptr) {
   if (!CheckDesignConstraints(rig, axes, o).empty()) return false;
   c->axes = axes;
   c->coverage = PositionCoverageAt(rig, axes, o.search_grid);
   if (!c->coverage.observed) return false;
   c->elements = objective.Elements(c->coverage);
+  if (prior) {
+    c->information = prior->Information(rig, axes);
+    if (c->information.size() == 0) return false;
+  }
   return true;
+}
+
+// Greedy selection and swaps under the prior objective: each step takes the candidate that
+// lowers the expected error most (prior_objective.h).
+std::vector<Candidate> ChooseForPrior(const geometry::RigGeometry& rig, const DesignOptions& o,
+                                      const Objective& coverage, const PriorObjective& prior,
+                                      const std::vector<Candidate>& candidates, double step) {
+  const int k = prior.components();
+  std::vector<Candidate> chosen;
+  Eigen::MatrixXd total = Eigen::MatrixXd::Zero(k, k);
+  const auto best_of = [&](const Eigen::MatrixXd& base, double* error) {
+    std::size_t best = 0;
+    *error = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const double e = prior.ExpectedError(base + candidates[i].information);
+      if (e < *error) *error = e, best = i;
+    }
+    return best;
+  };
+  for (int n = 0; n < o.count; ++n) {
+    double error = 0;
+    const std::size_t best = best_of(total, &error);
+    total += candidates[best].information;
+    chosen.push_back(candidates[best]);
+  }
+  for (int pass = 0; pass < o.refine_passes; ++pass) {
+    bool changed = false;
+    for (Candidate& slot : chosen) {
+      const Eigen::MatrixXd rest = total - slot.information;
+      double best_error = prior.ExpectedError(total);
+      const double current = best_error;
+      double error = 0;
+      const std::size_t best = best_of(rest, &error);
+      Candidate replacement = slot;
+      if (error < best_error - 1e-12) replacement = candidates[best], best_error = error;
+      for (const double fraction : {0.5, 0.25}) {
+        const geometry::AxisPositions base = replacement.axes;
+        for (const auto& [name, angle] : base) {
+          for (const double sign : {-1.0, 1.0}) {
+            geometry::AxisPositions axes = base;
+            axes[name] = angle + sign * fraction * step;
+            Candidate c;
+            if (!MakeCandidate(rig, axes, o, coverage, &c, &prior)) continue;
+            const double e = prior.ExpectedError(rest + c.information);
+            if (e < best_error - 1e-12) replacement = std::move(c), best_error = e;
+          }
+        }
+      }
+      if (best_error < current - 1e-12) {
+        total = rest + replacement.information;
+        slot = std::move(replacement);
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  return chosen;
 }
 
 std::string Describe(const PositionCoverage& c, const DesignOptions& o) {
@@ -213,6 +280,11 @@ void DesignOptions::Validate() const {
                                  {"requirement_weight", requirement_weight}}) {
     range(field, w, 0, 1e6);
   }
+  if (objective != "prior" && objective != "coverage") {
+    throw OptionsError("plan design: objective = '" + objective +
+                       "' must be 'prior' or 'coverage'");
+  }
+  range("prior_components", prior_components, 1, 4096);
   search_grid.Validate();
   report_grid.Validate();
 }
@@ -277,10 +349,17 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
   design.step_deg = Degrees(step);
 
   Objective objective(options);
+  std::optional<PriorObjective> prior;
+  if (options.objective == "prior") {
+    prior.emplace(options.prior ? *options.prior : prior::DefaultPrior(), options.prior_components,
+                  options.search_grid.samples_per_side);
+  }
   std::vector<Candidate> candidates;
   for (const geometry::AxisPositions& axes : CandidateGrid(rig, step)) {
     Candidate c;
-    if (MakeCandidate(rig, axes, options, objective, &c)) candidates.push_back(std::move(c));
+    if (MakeCandidate(rig, axes, options, objective, &c, prior ? &*prior : nullptr)) {
+      candidates.push_back(std::move(c));
+    }
   }
   design.candidates = static_cast<int>(candidates.size());
   const int wanted = options.count + options.validation;
@@ -292,6 +371,10 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
 
   // Greedy: the candidate adding the most objective, `count` times.
   std::vector<Candidate> chosen;
+  if (prior) {
+    chosen = ChooseForPrior(rig, options, objective, *prior, candidates, step);
+    for (const Candidate& c : chosen) objective.Add(c.elements, +1);
+  }
   const auto pick_best = [&](double* gain) {
     std::size_t best = 0;
     *gain = -1;
@@ -301,7 +384,7 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
     }
     return best;
   };
-  for (int n = 0; n < options.count; ++n) {
+  for (int n = prior ? options.count : 0; n < options.count; ++n) {
     double gain = 0;
     const std::size_t best = pick_best(&gain);
     objective.Add(candidates[best].elements, +1);
@@ -309,7 +392,7 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
   }
   // Swap search: retry each chosen position against every candidate and its own neighbours at
   // finer steps; stop when a pass changes nothing.
-  for (int pass = 0; pass < options.refine_passes; ++pass) {
+  for (int pass = 0; pass < (prior ? 0 : options.refine_passes); ++pass) {
     bool changed = false;
     for (Candidate& slot : chosen) {
       objective.Add(slot.elements, -1);
@@ -345,6 +428,15 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
   design.max_score = objective.MaxScore();
   design.has_retro = objective.Covered(objective.retro());
   design.has_grazing = objective.Covered(objective.grazing());
+  design.objective = options.objective;
+  if (prior) {
+    Eigen::MatrixXd total = Eigen::MatrixXd::Zero(prior->components(), prior->components());
+    for (const Candidate& c : chosen) total += c.information;
+    design.prior_name = prior->prior().name;
+    design.prior_only_rms = prior->RmsPerNode(prior->PriorError());
+    design.expected_rms = prior->RmsPerNode(prior->ExpectedError(total));
+    design.leave_one_out_rms = prior->RmsPerNode(prior->LeaveOneOutError(total));
+  }
   // Validation positions: what the fitted set does not see, by the same gain.
   for (int n = 0; n < options.validation; ++n) {
     double gain = 0;
@@ -361,10 +453,18 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
                    });
   Objective replay(options);
   std::vector<geometry::AxisPositions> fitted;
+  Eigen::MatrixXd so_far;
+  if (prior) so_far = Eigen::MatrixXd::Zero(prior->components(), prior->components());
   for (const Candidate& c : chosen) {
     DesignedPosition d;
     d.gain = replay.Gain(c.elements);
     replay.Add(c.elements, +1);
+    if (prior && !c.coverage.validation) {
+      const double before = prior->RmsPerNode(prior->ExpectedError(so_far));
+      so_far += c.information;
+      d.expected_rms_after = prior->RmsPerNode(prior->ExpectedError(so_far));
+      d.prior_gain = before - d.expected_rms_after;
+    }
     d.coverage = PositionCoverageAt(rig, c.axes, options.report_grid);
     d.coverage.validation = c.coverage.validation;
     d.reason = Describe(d.coverage, options);
@@ -381,8 +481,18 @@ std::string PlanDesign::ToString() const {
   out << "designed plan: " << options.count << " positions"
       << (options.validation ? " + " + std::to_string(options.validation) + " validation" : "")
       << " chosen from " << candidates << " candidates (grid step " << Num(step_deg)
-      << "°) by weighted (theta_h, theta_d) coverage: score " << Num(score, 0) << " of "
-      << Num(max_score, 0) << ", covered fraction " << Num(100 * covered_fraction) << " %\n";
+      << "°) by "
+      << (objective == "prior" ? "the expected reconstruction error under the prior '" +
+                                     prior_name + "'"
+                               : std::string("weighted (theta_h, theta_d) coverage"))
+      << ": coverage score " << Num(score, 0) << " of " << Num(max_score, 0)
+      << ", covered fraction " << Num(100 * covered_fraction) << " %\n";
+  if (objective == "prior") {
+    out << "  RMS error of ln(f cos cos + eps) per table node: " << Num(prior_only_rms, 3)
+        << " from the prior alone, " << Num(expected_rms, 3)
+        << " expected with these photos, " << Num(leave_one_out_rms, 3)
+        << " measured leave-one-material-out over the prior's training materials\n";
+  }
   out << "  near retro-reflection: " << (has_retro ? "yes" : "NO (the rig cannot)")
       << "; grazing light: " << (has_grazing ? "yes" : "NO (the rig cannot)") << "\n";
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -392,7 +502,12 @@ std::string PlanDesign::ToString() const {
       axes += (axes.empty() ? "" : ", ") + name + " " + Num(Degrees(angle));
     }
     out << "  " << i << (d.coverage.validation ? " (validation)" : "") << ": {" << axes
-        << "}: " << d.reason << "; gain " << Num(d.gain, 0) << "\n";
+        << "}: " << d.reason << "; coverage gain " << Num(d.gain, 0);
+    if (objective == "prior" && !d.coverage.validation) {
+      out << "; expected error " << Num(d.expected_rms_after + d.prior_gain, 3) << " -> "
+          << Num(d.expected_rms_after, 3);
+    }
+    out << "\n";
     std::string widen;
     for (const WidenHint& h : d.widen) {
       widen += (widen.empty() ? "" : ", ") + h.change + ": " +

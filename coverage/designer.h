@@ -31,10 +31,17 @@
 #include <vector>
 
 #include "coverage/coverage.h"
+#include "prior/measured_prior.h"
 
 namespace brdfrig::coverage {
 
 struct DesignOptions {
+  // "prior": positions chosen by the expected reconstruction error under the shipped measured
+  // prior (prior_objective.h; the coverage weights below then only choose validation
+  // positions); "coverage": by the weighted coverage above.
+  std::string objective = "prior";
+  int prior_components = 32;  // leading components the prior objective uses
+  const prior::MeasuredPrior* prior = nullptr;  // nullptr: the shipped prior (studies pass one)
   int count = 6;       // fitted positions, 1..24
   int validation = 0;  // extra validation positions, 0..24
   double step_deg = 10;
@@ -70,7 +77,10 @@ struct WidenHint {
 
 struct DesignedPosition {
   PositionCoverage coverage;  // axes, role, ranges, cells (report grid)
-  double gain = 0;            // objective added when chosen (in the final order)
+  double gain = 0;            // coverage objective added when chosen (in the final order)
+  // Prior objective: the expected RMS error per table node after this position (in the final
+  // order) and how much this position lowered it.
+  double expected_rms_after = 0, prior_gain = 0;
   std::string reason;         // one line: why this position (what it contributes)
   std::vector<WidenHint> widen;
 };
@@ -83,6 +93,11 @@ struct PlanDesign {
   int candidates = 0;                       // valid candidates searched
   double step_deg = 0;                      // the candidate step actually used
   bool has_retro = false, has_grazing = false;
+  std::string objective;  // "prior" or "coverage"
+  // Prior objective: RMS error of ln(f c + ε) per table node from the prior alone, expected
+  // with the fitted positions, and measured leave-one-material-out over the training set.
+  std::string prior_name;
+  double prior_only_rms = 0, expected_rms = 0, leave_one_out_rms = 0;
   std::vector<geometry::AxisPositions> Positions() const;
   std::vector<bool> Validation() const;
   std::string ToString() const;  // the explanation `plan check` prints

@@ -23,6 +23,8 @@ const char* KindDescription(brdf::ModelKind kind) {
       return "GGX + Lambert, Schlick Fresnel";
     case brdf::ModelKind::kBeckmann:
       return "Beckmann + Lambert, Schlick Fresnel";
+    case brdf::ModelKind::kPrior:
+      return "measured prior: a Rusinkiewicz table from the samples and learned materials";
   }
   return "?";
 }

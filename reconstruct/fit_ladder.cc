@@ -20,7 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Fitting order: ggx before microfacet (the table starts from the GGX fit of the same data).
 constexpr brdf::ModelKind kLadder[] = {brdf::ModelKind::kSeed, brdf::ModelKind::kSeedConstrained,
                                        brdf::ModelKind::kGgx, brdf::ModelKind::kBeckmann,
-                                       brdf::ModelKind::kMicrofacet};
+                                       brdf::ModelKind::kMicrofacet, brdf::ModelKind::kPrior};
 
 // Every position's samples, each position weighing the same in the fit: a sample's weight is
 // its pixel count, and how many pixels a photo gives the cut-out depends on the camera's
@@ -100,6 +100,7 @@ void LadderOptions::Validate() const {
   if (!model.empty()) (void)brdf::ParseModelKind(model);
   slice.Validate();
   microfacet.Validate();
+  prior.Validate();
 }
 
 brdf::Material FitRung(brdf::ModelKind kind, const std::vector<const PositionSamples*>& positions,
@@ -117,6 +118,7 @@ brdf::Material FitRung(brdf::ModelKind kind, const std::vector<const PositionSam
     (void)seed.material.Model();  // validates
     return seed.material;
   }
+  if (kind == brdf::ModelKind::kPrior) return FitPriorRung(positions, options.prior);
   MicrofacetFitOptions mf = options.microfacet;
   mf.covariance = mf.covariance && final;
   const std::vector<DirectionSample> samples = Pool(positions);
@@ -239,17 +241,19 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
   for (RungResult& rung : result.rungs) {
     if (rung.fitted) rung.max_albedo = MaxAlbedo(*rung.material.Model()).albedo;
   }
-  const auto choose = [&](bool require_energy) {
+  // A material unlike the prior's training set is left to the data and the compact forms.
+  const auto choose = [&](bool strict) {
     for (std::size_t r = 0; r < result.rungs.size(); ++r) {
       const RungResult& rung = result.rungs[r];
-      if (!rung.fitted || (require_energy && !rung.ConservesEnergy())) continue;
+      if (!rung.fitted || (strict && !rung.ConservesEnergy())) continue;
+      if (strict && OutsidePrior(rung.material)) continue;
       if (result.chosen < 0 || rung.score < result.rungs[result.chosen].score) {
         result.chosen = static_cast<int>(r);
       }
     }
   };
-  choose(/*require_energy=*/true);
-  if (result.chosen < 0) choose(/*require_energy=*/false);
+  choose(/*strict=*/true);
+  if (result.chosen < 0) choose(/*strict=*/false);
   // When a rung is forced its energy is in the ladder (max_albedo); when the choice had to fall
   // back to a model that creates energy, say so.
   if (options.model.empty() && result.chosen >= 0 &&

@@ -18,6 +18,7 @@
 
 #include "brdf/material_file.h"
 #include "reconstruct/microfacet_fit.h"
+#include "reconstruct/prior_rung.h"
 #include "reconstruct/seed_fit.h"
 #include "reconstruct/slice_fit.h"
 
@@ -29,6 +30,7 @@ struct LadderOptions {
   std::string model;
   SliceFitOptions slice;
   MicrofacetFitOptions microfacet;
+  PriorRungOptions prior;
   bool validate = true;  // LOPO folds (false: every rung fitted once, the choice by residual)
   void Validate() const;
 };

@@ -30,6 +30,10 @@ const char* MethodOf(brdf::ModelKind kind) {
     case brdf::ModelKind::kBeckmann:
       return "analytic microfacet + Lambert, one fit over every position, Ceres LM, "
              "log(eps + f cos) loss";
+    case brdf::ModelKind::kPrior:
+      return "Rusinkiewicz table: maximum a posteriori coefficients of the measured prior's "
+             "principal components in ln(f c + eps), corrected towards the samples where the "
+             "photos saw the material";
   }
   return "?";
 }

@@ -9,6 +9,7 @@
 #include "apps/brdfrig/batch_commands.h"
 #include "apps/brdfrig/daemon_commands.h"
 #include "apps/brdfrig/evaluate_commands.h"
+#include "apps/brdfrig/prior_commands.h"
 #include "apps/brdfrig/reconstruct_commands.h"
 #include "apps/brdfrig/render_commands.h"
 #include "apps/brdfrig/rig_commands.h"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   brdfrig::apps::RegisterReconstructCommands(app);
   brdfrig::apps::RegisterBatchCommands(app);
   brdfrig::apps::RegisterEvaluateCommands(app);
+  brdfrig::apps::RegisterPriorCommands(app);
   brdfrig::apps::RegisterRigCommands(app);
   brdfrig::apps::RegisterAcquireCommands(app);
   brdfrig::apps::RegisterDaemonCommands(app);

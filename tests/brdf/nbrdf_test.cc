@@ -164,7 +164,8 @@ TEST(NbrdfTest, LoaderNamesTheFileAndTheFieldThatIsWrong) {
 
 TEST(NbrdfTest, MaterialsAreFoundByNameAndByFile) {
   const std::vector<std::string> names = NbrdfMaterialNames();
-  EXPECT_EQ(names.size(), 27u);
+  EXPECT_EQ(names.size(), 80u);
+  EXPECT_EQ(NbrdfStudyMaterialNames().size(), 27u);
   EXPECT_THAT(names, ::testing::Contains("gold-metallic-paint"));
   try {
     NbrdfMaterialPath("../nbrdf/brass");

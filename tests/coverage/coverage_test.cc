@@ -16,7 +16,7 @@ constexpr double kDegree = M_PI / 180;
 
 geometry::RigGeometry DefaultRig() {
   return geometry::ParseRigGeometry(
-      LoadYamlFile(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml").Required("rig"));
+      LoadYamlFile(BRDFRIG_SOURCE_DIR "/sim/scenes/ggx.yaml").Required("rig"));
 }
 
 std::vector<geometry::AxisPositions> MirrorPlan() {

@@ -9,7 +9,7 @@ namespace brdfrig::evaluate {
 namespace {
 
 sim::Scene SmallScene() {
-  sim::Scene scene = sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml");
+  sim::Scene scene = sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/ggx.yaml");
   geometry::Intrinsics& k = scene.rig.intrinsics;
   const double scale = 320.0 / k.width;
   k = {320,          static_cast<int>(k.height * scale),

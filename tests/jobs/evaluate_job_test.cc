@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 // The default scene at 320×240 (same field of view), written next to the test's files.
 fs::path SmallScene(const fs::path& dir) {
-  std::string text = ReadFileToString(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml");
+  std::string text = ReadFileToString(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/ggx.yaml");
   text = std::regex_replace(text, std::regex("resolution: \\[1600, 1200\\]"),
                             "resolution: [320, 240]");
   fs::create_directories(dir);

@@ -96,7 +96,7 @@ TEST(LadderSectionTest, SmallDemoReportsTheLadderAndTheValidationPhoto) {
   const fs::path dir = fs::temp_directory_path() / "brdfrig_demo_ladder";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::string scene = ReadFileToString(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml");
+  std::string scene = ReadFileToString(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/ggx.yaml");
   scene = std::regex_replace(scene, std::regex("resolution: \\[1600, 1200\\]"),
                              "resolution: [320, 240]");
   scene = std::regex_replace(scene, std::regex("positions: \\{design: \\{count: 6\\}\\}"),

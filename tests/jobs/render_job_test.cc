@@ -18,7 +18,7 @@ const fs::path kSource = BRDFRIG_SOURCE_DIR;
 TEST(RenderJobTest, RendersASceneCapturePositionToExr) {
   RenderJobOptions options;
   options.material = kSource / "tests/data/glossy_slices.json";
-  options.scene = kSource / "sim/scenes/default.yaml";
+  options.scene = kSource / "sim/scenes/ggx.yaml";
   options.position = 1;
   options.output = fs::temp_directory_path() / "brdfrig_render_job.exr";
   const RenderJobSummary s = RunRenderJob(options);
@@ -66,7 +66,7 @@ TEST(RenderJobTest, BadInputsGiveClearErrors) {
   options.material = "/nonexistent/material.json";
   EXPECT_THROW(RunRenderJob(options), FileError);
   options.material = kSource / "tests/data/glossy_slices.json";
-  options.scene = kSource / "sim/scenes/default.yaml";
+  options.scene = kSource / "sim/scenes/ggx.yaml";
   options.position = 99;
   options.output = fs::temp_directory_path() / "x.png";
   EXPECT_THAT([&] { RunRenderJob(options); },

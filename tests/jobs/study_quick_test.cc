@@ -27,7 +27,7 @@ const char* kMaterial =
 
 TEST(StudyQuickTest, PerfectFitScoresAtTheCeilingAndTheSeedFitClearlyLowerOffSpecular) {
   // Perfect fit: the truth judged against itself through the same instruments.
-  sim::Scene scene = sim::LoadScene(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml");
+  sim::Scene scene = sim::LoadScene(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/ggx.yaml");
   geometry::Intrinsics& k = scene.rig.intrinsics;
   const double scale = 320.0 / k.width;
   k = {320, 240, k.fx * scale, k.fy * scale, 160, 120};

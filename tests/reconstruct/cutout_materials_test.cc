@@ -32,7 +32,7 @@ geometry::AxisPositions At(double camera_arm_deg, double light_arm_deg, double a
 // (the highlight at the cut-out's centre near the normal, and grazing).
 std::vector<geometry::AxisPositions> CommonPositions() {
   const sim::Scene scene =
-      sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml");
+      sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/ggx.yaml");
   std::vector<geometry::AxisPositions> positions = scene.capture.positions;
   positions.push_back(At(15, -15, 0));
   positions.push_back(At(65, -65, 0));
@@ -109,7 +109,7 @@ Outcome Measure(const sim::Simulator& simulator, const geometry::AxisPositions& 
 }
 
 TEST(CutoutOnMeasuredMaterials, FoundInEveryPositionOnEveryMaterial) {
-  const std::vector<std::string> names = brdf::NbrdfMaterialNames();
+  const std::vector<std::string> names = brdf::NbrdfStudyMaterialNames();
   ASSERT_EQ(names.size(), 27u);
   const std::vector<geometry::AxisPositions> common = CommonPositions();
   ASSERT_EQ(common.size(), 8u);  // six designed, two mirror

@@ -16,7 +16,7 @@ namespace {
 
 sim::Scene SmallIdealScene() {
   sim::Scene scene =
-      sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml").Ideal();
+      sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/ggx.yaml").Ideal();
   geometry::Intrinsics& k = scene.rig.intrinsics;
   const double scale = 400.0 / k.width;
   k.width = 400;

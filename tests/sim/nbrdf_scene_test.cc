@@ -22,7 +22,7 @@ constexpr double kDegree = M_PI / 180.0;
 
 // The shipped default scene at 320×240 with `brdf` as the sample's material.
 std::string DefaultSceneWith(const std::string& brdf) {
-  std::string text = ReadFileToString(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml");
+  std::string text = ReadFileToString(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/ggx.yaml");
   const auto replace = [&](const std::string& from, const std::string& to) {
     const auto at = text.find(from);
     EXPECT_NE(at, std::string::npos) << from;

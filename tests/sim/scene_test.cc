@@ -38,7 +38,7 @@ std::string ErrorOf(const std::string& extra) {
 std::string At(int extra_line) { return "scene.yaml:" + std::to_string(BaseLines() + extra_line); }
 
 TEST(SceneTest, DefaultSceneLoadsWithSixDesignedPositions) {
-  const Scene scene = LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml");
+  const Scene scene = LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/ggx.yaml");
   EXPECT_EQ(scene.rig.intrinsics.width, 1600);
   EXPECT_EQ(scene.rig.intrinsics.height, 1200);
   ASSERT_EQ(scene.capture.positions.size(), 6u);

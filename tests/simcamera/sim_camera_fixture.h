@@ -22,13 +22,13 @@
 namespace brdfrig::simcamera {
 
 inline sim::Scene SmallTestScene() {
-  std::ifstream in(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/default.yaml");
+  std::ifstream in(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/ggx.yaml");
   std::stringstream text;
   text << in.rdbuf();
   std::string yaml = text.str();
   const auto replace = [&](const std::string& from, const std::string& to) {
     const auto at = yaml.find(from);
-    if (at == std::string::npos) throw std::runtime_error("default.yaml changed: " + from);
+    if (at == std::string::npos) throw std::runtime_error("ggx.yaml changed: " + from);
     yaml.replace(at, from.size(), to);
   };
   replace("resolution: [1600, 1200]", "resolution: [160, 120]");

@@ -1,0 +1,206 @@
+// The measured prior judged leave-one-material-out on the shipped measured materials, with
+// noise-free samples at the directions a plan's photos see (25 x 25 cut-out points per photo,
+// nominal geometry of sim/scenes/default.yaml): the "designed" row of the ceiling table for
+// the prior rung beside the compact rungs fitted to the same samples. For every material the
+// prior is rebuilt without it; the plan is designed under that left-out prior (--loo-design)
+// or once under the prior of all materials (the default: the plan's positions then know every
+// material's covariance, the fit never its table).
+//
+//   bench_prior_study [--materials a,b,...] [--counts 4,6,8,12] [--components K]
+//                     [--noise SIGMA] [--correction W] [--loo-design] [--no-compact]
+//
+// Prints per material the sphere PSNR of the prior, ggx and microfacet rungs, the worst
+// albedo ratio over 0-75°, and a summary per position count.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "brdf/metrics.h"
+#include "brdf/nbrdf.h"
+#include "brdf/nbrdf_library.h"
+#include "common/angles.h"
+#include "common/yaml_reader.h"
+#include "coverage/designer.h"
+#include "evaluate/sphere_test.h"
+#include "prior/build_prior.h"
+#include "reconstruct/fit_ladder.h"
+
+namespace {
+
+using namespace brdfrig;
+
+std::vector<std::string> SplitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start < s.size()) {
+    const std::size_t comma = s.find(',', start);
+    out.push_back(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::vector<reconstruct::PositionSamples> PlanSamples(
+    const brdf::Brdf& truth, const geometry::RigGeometry& rig,
+    const std::vector<geometry::AxisPositions>& plan) {
+  std::vector<reconstruct::PositionSamples> out;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    reconstruct::PositionSamples p;
+    p.index = static_cast<int>(i);
+    const geometry::Vec3 camera = rig.CameraAt(plan[i]).CenterInWorld();
+    const geometry::Vec3 light = rig.LightAt(plan[i]);
+    const int n = 25;
+    for (int iy = 0; iy < n; ++iy) {
+      for (int ix = 0; ix < n; ++ix) {
+        const geometry::Vec3 x((ix / (n - 1.0) - 0.5) * rig.target.cutout_width,
+                               (iy / (n - 1.0) - 0.5) * rig.target.cutout_height, 0);
+        reconstruct::DirectionSample s;
+        s.l = (light - x).normalized();
+        s.v = (camera - x).normalized();
+        const brdf::Rgb f = truth.Eval(s.l, s.v, brdf::Vec3::UnitZ());
+        for (int c = 0; c < 3; ++c) s.f[c] = f[c];
+        p.directions.samples.push_back(s);
+      }
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+struct Judged {
+  double sphere_db = NAN;
+  double albedo_worst = NAN;  // max over 0,30,60,75° and channels of |ratio − 1|
+  bool outside = false;
+};
+
+Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
+  Judged j;
+  j.sphere_db = evaluate::SphereTest(truth, fit).mean_psnr_db;
+  brdf::MetricOptions m;
+  m.theta_steps = 96;
+  m.phi_steps = 128;
+  j.albedo_worst = 0;
+  for (const double deg : {0.0, 30.0, 60.0, 75.0}) {
+    const brdf::Rgb a = brdf::DirectionalAlbedo(truth, Radians(deg), m);
+    const brdf::Rgb b = brdf::DirectionalAlbedo(fit, Radians(deg), m);
+    for (int c = 0; c < 3; ++c) {
+      if (a[c] > 1e-4) j.albedo_worst = std::max(j.albedo_worst, std::abs(b[c] / a[c] - 1));
+    }
+  }
+  return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> names;
+  std::vector<int> counts = {6};
+  prior::PriorBuildOptions build;
+  bool loo_design = false, compact = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (a == "--materials") {
+      names = SplitList(next());
+    } else if (a == "--counts") {
+      counts.clear();
+      for (const std::string& c : SplitList(next())) counts.push_back(std::stoi(c));
+    } else if (a == "--components") {
+      build.max_components = std::stoi(next());
+    } else if (a == "--noise") {
+      build.noise_sigma = std::stod(next());
+    } else if (a == "--correction") {
+      build.correction_weight = std::stod(next());
+    } else if (a == "--loo-design") {
+      loo_design = true;
+    } else if (a == "--no-compact") {
+      compact = false;
+    } else {
+      std::fprintf(stderr, "unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  const prior::TrainingSet set = prior::ReadTrainingSet({brdf::NbrdfDirectory()}, build);
+  if (names.empty()) {
+    for (const auto& m : set.materials) names.push_back(m.name);
+  }
+  const geometry::RigGeometry rig = geometry::ParseRigGeometry(
+      LoadYamlFile(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml").Required("rig"));
+  const prior::MeasuredPrior full = prior::BuildPrior(set, build);
+  std::printf("prior study: %zu materials, leave-one-material-out priors (%d components, noise "
+              "%.3g, correction %.3g), noise-free samples at the plan's directions, %s plans\n",
+              names.size(), full.Components(), build.noise_sigma, build.correction_weight,
+              loo_design ? "left-out" : "all-material");
+  for (const int count : counts) {
+    coverage::DesignOptions design;
+    design.count = count;
+    design.prior = &full;
+    std::vector<geometry::AxisPositions> plan = coverage::DesignPlan(rig, design).Positions();
+    std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s\n", count, "material", "prior",
+                "ggx", "micro", "albedo", "outside");
+    std::map<std::string, std::vector<double>> sphere;
+    std::vector<double> albedo;
+    int outside = 0;
+    for (const std::string& name : names) {
+      const auto it = std::find_if(set.materials.begin(), set.materials.end(),
+                                   [&](const auto& m) { return m.name == name; });
+      if (it == set.materials.end()) {
+        std::fprintf(stderr, "no material %s\n", name.c_str());
+        return 2;
+      }
+      const int index = static_cast<int>(it - set.materials.begin());
+      const prior::MeasuredPrior loo = prior::BuildPrior(set, build, index);
+      if (loo_design) {
+        design.prior = &loo;
+        plan = coverage::DesignPlan(rig, design).Positions();
+      }
+      const brdf::NeuralBrdf truth = brdf::ReadNbrdfMaterial(name);
+      const auto positions = PlanSamples(truth, rig, plan);
+      std::vector<const reconstruct::PositionSamples*> all;
+      for (const auto& p : positions) all.push_back(&p);
+      reconstruct::LadderOptions options;
+      options.prior.prior = &loo;
+      const brdf::Material pm = reconstruct::FitRung(brdf::ModelKind::kPrior, all, options, false);
+      const Judged jp = Judge(truth, *pm.Model());
+      double ggx = NAN, micro = NAN;
+      if (compact) {
+        try {
+          const brdf::Material g = reconstruct::FitRung(brdf::ModelKind::kGgx, all, options, false);
+          ggx = Judge(truth, *g.Model()).sphere_db;
+          const brdf::Material mf = reconstruct::FitRung(brdf::ModelKind::kMicrofacet, all,
+                                                         options, false, nullptr, &g.microfacet);
+          micro = Judge(truth, *mf.Model()).sphere_db;
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+        }
+      }
+      const bool out = reconstruct::OutsidePrior(pm);
+      outside += out;
+      sphere["prior"].push_back(jp.sphere_db);
+      sphere["ggx"].push_back(ggx);
+      sphere["microfacet"].push_back(micro);
+      albedo.push_back(jp.albedo_worst);
+      std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8s\n", name.c_str(), jp.sphere_db, ggx, micro,
+                  100 * jp.albedo_worst, out ? "yes" : "");
+      std::fflush(stdout);
+    }
+    for (const auto& [rung, values] : sphere) {
+      double sum = 0, worst = INFINITY;
+      int n = 0;
+      for (const double v : values) {
+        if (std::isfinite(v)) sum += v, worst = std::min(worst, v), ++n;
+      }
+      std::printf("%d positions, %-10s sphere mean %.2f dB, worst %.2f dB (%d materials)\n", count,
+                  rung.c_str(), n ? sum / n : NAN, worst, n);
+    }
+    const long within = std::count_if(albedo.begin(), albedo.end(), [](double a) { return a <= 0.1; });
+    std::printf("%d positions, prior albedo within 10 %% at 0-75°: %ld of %zu; outside the prior: "
+                "%d\n", count, within, albedo.size(), outside);
+  }
+  return 0;
+}

@@ -1,0 +1,49 @@
+// A material's table from its measured samples and the prior: the samples decide where the
+// photos saw the material, the prior fills in the rest.
+//
+//  1. Maximum a posteriori coefficients, per channel: minimise
+//        Σ_o w_o (q_o − μ(x_o) − b(x_o)·c)² / σ² + Σ_k c_k² / s_k²
+//     (q_o the sample's mapped value, μ and b the mean and components interpolated at its
+//     coordinates, σ the prior's noise level, s_k² the coefficients' variances).
+//  2. Where the photos saw the material, the table follows them: each node moves by the
+//     weighted mean of the residuals of the samples around it, shrunk by the prior's
+//     correction weight (a node with little data keeps the prior's value).
+//  3. Misfit: the weighted RMS residual of step 1 in units of σ. A material unlike every
+//     training material leaves residuals the components cannot explain; above
+//     `misfit_limit` the fit says the material lies outside the prior and the ladder does not
+//     choose this rung by default.
+#pragma once
+
+#include <vector>
+
+#include "brdf/rusinkiewicz_table.h"
+#include "prior/measured_prior.h"
+
+namespace brdfrig::prior {
+
+// One measured BRDF sample in the local frame (z = normal).
+struct Observation {
+  brdf::Vec3 l = brdf::Vec3::UnitZ(), v = brdf::Vec3::UnitZ();
+  brdf::Rgb f = brdf::Rgb::Zero();
+  double weight = 1;
+};
+
+struct PriorFitOptions {
+  double misfit_limit = 3;  // residual RMS / σ above which the material is outside the prior
+  bool correct = true;      // step 2
+  void Validate() const;
+};
+
+struct PriorFitResult {
+  brdf::TableValues table;                // q per channel and node
+  std::array<Eigen::VectorXd, 3> coefficients;
+  double misfit = 0;  // step 3, the worst channel
+  bool outside_prior = false;
+  int observations = 0;
+};
+
+// Throws brdfrig::Error when there is no observation with positive weight.
+PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observation>& observations,
+                        const PriorFitOptions& options = {});
+
+}  // namespace brdfrig::prior

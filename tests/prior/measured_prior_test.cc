@@ -1,0 +1,141 @@
+#include "prior/measured_prior.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+#include "brdf/nbrdf_library.h"
+#include "common/error.h"
+#include "prior/build_prior.h"
+#include "prior/prior_fit.h"
+
+namespace brdfrig::prior {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A coarse grid keeps the test fast; the shipped prior's grid is the default.
+PriorBuildOptions SmallOptions() {
+  PriorBuildOptions o;
+  o.grid.theta_h = 24;
+  o.grid.theta_d = 12;
+  o.grid.phi_d = 4;
+  o.max_components = 40;
+  o.noise_sigma = 0.1;
+  return o;
+}
+
+const TrainingSet& Set() {
+  static const TrainingSet set = ReadTrainingSet({brdf::NbrdfDirectory()}, SmallOptions());
+  return set;
+}
+
+double TableRms(const brdf::TableValues& a, const brdf::TableValues& b) {
+  double sum = 0;
+  long n = 0;
+  for (int c = 0; c < 3; ++c) {
+    for (std::size_t i = 0; i < a[c].size(); ++i, ++n) sum += std::pow(a[c][i] - b[c][i], 2);
+  }
+  return std::sqrt(sum / n);
+}
+
+// Observations of a table at every node (dense data) or only within `max_theta_h`.
+std::vector<Observation> Observe(const brdf::TableValues& truth, const brdf::RusinkiewiczGrid& g,
+                                 double max_theta_h) {
+  std::vector<Observation> out;
+  const brdf::RusinkiewiczTable table(g, truth);
+  for (int ih = 0; ih < g.theta_h; ++ih) {
+    for (int id = 0; id < g.theta_d; ++id) {
+      for (int ip = 0; ip < g.phi_d; ++ip) {
+        const brdf::HalfDiffAngles a = brdf::NodeAngles(g, ih, id, ip);
+        if (a.theta_h > max_theta_h) continue;
+        Observation o;
+        brdf::FromHalfDiffAngles(a, &o.l, &o.v);
+        if (o.l.z() <= 0.01 || o.v.z() <= 0.01) continue;
+        o.f = table.EvalLocal(o.l, o.v);
+        out.push_back(o);
+      }
+    }
+  }
+  return out;
+}
+
+TEST(MeasuredPrior, EveryShippedMaterialIsTabulatedWithItsLicenceAndHash) {
+  ASSERT_EQ(Set().materials.size(), 80u);
+  for (const TrainingMaterial& m : Set().materials) {
+    EXPECT_EQ(m.sha256.size(), 64u) << m.name;
+    EXPECT_THAT(m.licence, HasSubstr("MIT")) << m.name;
+    EXPECT_THAT(m.database, ::testing::AnyOf("merl", "rgl", "dtu")) << m.name;
+  }
+}
+
+TEST(MeasuredPrior, LeftOutMaterialIsReconstructedFromPartialDataBetterThanTheMean) {
+  const PriorBuildOptions options = SmallOptions();
+  double fit_error = 0, mean_error = 0;
+  const std::vector<int> held_out = {3, 17, 42, 66};
+  for (const int m : held_out) {
+    const MeasuredPrior p = BuildPrior(Set(), options, m);
+    ASSERT_EQ(p.training.size(), 79u);
+    const brdf::TableValues& truth = Set().tables[m];
+    // Photos that saw θh up to 30°: the rest comes from the prior.
+    PriorFitOptions fit_options;
+    fit_options.correct = false;
+    const PriorFitResult fit = FitPrior(p, Observe(truth, p.grid, 0.5), fit_options);
+    brdf::TableValues mean;
+    for (auto& c : mean) c.assign(p.mean.data(), p.mean.data() + p.mean.size());
+    fit_error += TableRms(fit.table, truth) / held_out.size();
+    mean_error += TableRms(mean, truth) / held_out.size();
+  }
+  EXPECT_LT(fit_error, 0.5 * mean_error) << fit_error << " vs the mean's " << mean_error;
+}
+
+TEST(MeasuredPrior, TrainingMaterialFromDenseDataIsAlmostExact) {
+  const MeasuredPrior p = BuildPrior(Set(), SmallOptions());
+  const brdf::TableValues& truth = Set().tables[10];
+  const PriorFitResult fit = FitPrior(p, Observe(truth, p.grid, M_PI / 2), {});
+  EXPECT_LT(TableRms(fit.table, truth), 0.05);
+  EXPECT_FALSE(fit.outside_prior) << fit.misfit;
+}
+
+TEST(MeasuredPrior, FileRoundTripsAndBrokenFilesNameTheProblem) {
+  PriorBuildOptions options = SmallOptions();
+  options.max_components = 8;
+  const MeasuredPrior p = BuildPrior(Set(), options);
+  const std::string path = testing::TempDir() + "/p.prior";
+  WritePrior(p, path);
+  const MeasuredPrior back = ReadPrior(path);
+  EXPECT_EQ(back.training.size(), p.training.size());
+  EXPECT_EQ(back.training[5].sha256, p.training[5].sha256);
+  EXPECT_EQ(back.grid, p.grid);
+  EXPECT_NEAR((back.components - p.components).cwiseAbs().maxCoeff(), 0, 1e-6);
+  EXPECT_NEAR(back.noise_sigma, p.noise_sigma, 1e-12);
+
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto expect_error = [&](const std::string& text, const std::string& what) {
+    const std::string broken = testing::TempDir() + "/broken.prior";
+    std::ofstream(broken, std::ios::binary) << text;
+    try {
+      ReadPrior(broken);
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const FileError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("broken.prior"));
+      EXPECT_THAT(e.what(), HasSubstr(what));
+    }
+  };
+  expect_error("hello", "not a brdfrig prior");
+  expect_error(bytes.substr(0, bytes.size() - 10), "cut short");
+  std::string nan = bytes;
+  const float bad = std::nanf("");
+  std::memcpy(nan.data() + nan.size() - 4, &bad, 4);
+  expect_error(nan, "not finite");
+  std::string version = bytes;
+  version.replace(version.find("\"version\": 1"), 12, "\"version\": 7");
+  expect_error(version, "version");
+}
+
+}  // namespace
+}  // namespace brdfrig::prior
