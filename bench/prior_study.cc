@@ -141,8 +141,8 @@ int main(int argc, char** argv) {
     design.count = count;
     design.prior = &full;
     std::vector<geometry::AxisPositions> plan = coverage::DesignPlan(rig, design).Positions();
-    std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s\n", count, "material", "prior",
-                "ggx", "micro", "albedo", "outside");
+    std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s %8s\n", count, "material", "prior",
+                "ggx", "micro", "albedo", "misfit", "outside");
     std::map<std::string, std::vector<double>> sphere;
     std::vector<double> albedo;
     int outside = 0;
@@ -185,8 +185,8 @@ int main(int argc, char** argv) {
       sphere["ggx"].push_back(ggx);
       sphere["microfacet"].push_back(micro);
       albedo.push_back(jp.albedo_worst);
-      std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8s\n", name.c_str(), jp.sphere_db, ggx, micro,
-                  100 * jp.albedo_worst, out ? "yes" : "");
+      std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8.3f %8s\n", name.c_str(), jp.sphere_db, ggx,
+                  micro, 100 * jp.albedo_worst, pm.fit.value("misfit", NAN), out ? "yes" : "");
       std::fflush(stdout);
     }
     for (const auto& [rung, values] : sphere) {

@@ -20,7 +20,7 @@ DesignOptions ParseDesignRequest(const YamlNode& node) {
       v->Fail("expected 'prior' or 'coverage'");
     }
   }
-  integer("prior_components", &o.prior_components, 1, 4096);
+  integer("prior_components", &o.prior_components, 1, 64);
   integer("count", &o.count, 1, 24);
   integer("validation", &o.validation, 0, 24);
   real("step_deg", &o.step_deg, 1, 45);

@@ -11,7 +11,7 @@ namespace brdfrig::coverage {
 
 PriorObjective::PriorObjective(const prior::MeasuredPrior& prior, int components,
                                int points_per_side)
-    : prior_(prior), k_(std::clamp(components, 1, prior.Components())),
+    : prior_(prior), k_(std::clamp(components, 1, std::min(prior.Components(), kMaxComponents))),
       points_per_side_(std::max(points_per_side, 2)) {
   components_ = prior.components.leftCols(k_);
   inverse_variances_ = prior.variances.head(k_).cwiseInverse();
@@ -52,11 +52,14 @@ Eigen::MatrixXd PriorObjective::Information(const geometry::RigGeometry& rig,
 }
 
 double PriorObjective::ExpectedError(const Eigen::MatrixXd& total) const {
-  Eigen::MatrixXd precision = total / (prior_.noise_sigma * prior_.noise_sigma);
+  // Called ~10⁵ times per design: matrices of at most kMaxComponents on the stack.
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                              kMaxComponents, kMaxComponents>;
+  Small precision = total / (prior_.noise_sigma * prior_.noise_sigma);
   precision.diagonal() += inverse_variances_;
-  const Eigen::LLT<Eigen::MatrixXd> llt(precision);
-  const Eigen::MatrixXd l_inv =
-      llt.matrixL().solve(Eigen::MatrixXd::Identity(k_, k_));  // trace(P⁻¹) = ‖L⁻¹‖²
+  const Eigen::LLT<Small> llt(precision);
+  Small l_inv = Small::Identity(k_, k_);
+  llt.matrixL().solveInPlace(l_inv);  // trace(P⁻¹) = ‖L⁻¹‖²
   return l_inv.squaredNorm();
 }
 

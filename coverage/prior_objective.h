@@ -22,6 +22,7 @@ namespace brdfrig::coverage {
 
 class PriorObjective {
  public:
+  static constexpr int kMaxComponents = 64;
   // `components`: how many leading components the search uses (the rest carry little variance
   // and cost K³ per evaluation); `points_per_side`: cut-out points per side of a photo.
   PriorObjective(const prior::MeasuredPrior& prior, int components, int points_per_side);

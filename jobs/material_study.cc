@@ -156,6 +156,7 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
   s.model = options.model;
   s.judge_every_rung = options.every_rung;
   s.judge_brdf_only = options.brdf_only;
+  if (options.prior_for) s.prior = options.prior_for(material);
   const auto start = std::chrono::steady_clock::now();
   try {
     row.result = RunStudyPoint(s);

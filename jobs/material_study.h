@@ -48,6 +48,9 @@ struct MaterialStudyOptions {
   std::string model;  // ladder rung to force ("seed", ...); empty: every rung, chosen by validation
   bool every_rung = false;  // judge every fitted rung (MaterialStudyRow::rungs)
   bool brdf_only = false;   // sphere test and BRDF figures only (no held-out views, no GL)
+  // The measured prior for a material (nullptr or empty: the shipped prior). Studies of the
+  // shipped measured materials pass the prior built without the material.
+  std::function<const prior::MeasuredPrior*(const StudyMaterial&)> prior_for;
   void Validate() const;    // throws OptionsError
 };
 

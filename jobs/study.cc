@@ -120,6 +120,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   options.samples.bin_width = Radians(s.bin_width_deg);
   options.fit.max_iterations = s.fit_iterations;
   options.model = s.model;
+  options.prior.prior = s.prior;
   // capture.json names the base scene; the nominal geometry is the edited scene's.
   reconstruct::CaptureSet capture = reconstruct::LoadCapture(scratch.path() / "capture");
   capture.nominal = scene->rig;

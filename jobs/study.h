@@ -12,6 +12,7 @@
 #include "evaluate/held_out.h"
 #include "evaluate/material_report.h"
 #include "geometry/rig_geometry.h"
+#include "prior/measured_prior.h"
 #include "sim/scene.h"
 
 namespace brdfrig::jobs {
@@ -46,6 +47,9 @@ struct StudySettings {
   bool judge_every_rung = false;
   // With `judge`: the CPU figures only (sphere test, BRDF figures), no held-out views.
   bool judge_brdf_only = false;
+  // The measured prior of the `prior` rung (nullptr: the shipped one); a study of a measured
+  // material passes one built without it.
+  const prior::MeasuredPrior* prior = nullptr;
 };
 
 // One rung of the ladder judged (StudySettings::judge_every_rung).

@@ -66,6 +66,16 @@ TrainingSet ReadTrainingSet(const std::vector<std::filesystem::path>& directorie
   return set;
 }
 
+PriorBuildOptions OptionsOf(const MeasuredPrior& prior) {
+  PriorBuildOptions o;
+  o.name = prior.name;
+  o.grid = prior.grid;
+  o.max_components = prior.Components();
+  o.noise_sigma = prior.noise_sigma;
+  o.correction_weight = prior.correction_weight;
+  return o;
+}
+
 MeasuredPrior BuildPrior(const TrainingSet& set, const PriorBuildOptions& options,
                          int leave_out) {
   options.Validate();

@@ -35,7 +35,7 @@ struct MeasuredPrior {
   brdf::RusinkiewiczGrid grid;
   // Standard deviation of one observation's q (unit weight) in the fit: photo noise plus what
   // the components cannot represent. Chosen by leave-one-material-out (docs/prior.md).
-  double noise_sigma = 0.3;
+  double noise_sigma = 1;
   // Weight of the prior's own value against the measured samples when the fit corrects the
   // table where photos saw the material (prior_fit.h).
   double correction_weight = 1;

@@ -57,7 +57,7 @@ PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observatio
     const Eigen::VectorXd table = prior.mean + prior.components * result.coefficients[ch];
     const Eigen::VectorXd residual = qc - mu - b * result.coefficients[ch];
     const double rms = std::sqrt(w.dot(residual.cwiseAbs2()) / w.sum());
-    result.misfit = std::max(result.misfit, rms / prior.noise_sigma);
+    result.misfit = std::max(result.misfit, rms);
     result.table[ch].assign(table.data(), table.data() + table.size());
     if (!options.correct) continue;
     std::vector<double> num(grid.Cells(), 0.0), den(grid.Cells(), 0.0);

@@ -8,10 +8,12 @@
 //  2. Where the photos saw the material, the table follows them: each node moves by the
 //     weighted mean of the residuals of the samples around it, shrunk by the prior's
 //     correction weight (a node with little data keeps the prior's value).
-//  3. Misfit: the weighted RMS residual of step 1 in units of σ. A material unlike every
-//     training material leaves residuals the components cannot explain; above
-//     `misfit_limit` the fit says the material lies outside the prior and the ladder does not
-//     choose this rung by default.
+//  3. Misfit: the weighted RMS residual of step 1 in q (σ is a regularisation weight chosen by
+//     leave-one-material-out, not the photos' noise, so the misfit is judged in q itself). A
+//     material unlike every training material leaves residuals the components cannot explain:
+//     left-out training materials leave 0.02–0.3 from noise-free plan samples (docs/prior.md),
+//     photo noise adds a few hundredths; above `misfit_limit` the fit says the material lies
+//     outside the prior and the ladder does not choose this rung by default.
 #pragma once
 
 #include <vector>
@@ -29,7 +31,7 @@ struct Observation {
 };
 
 struct PriorFitOptions {
-  double misfit_limit = 3;  // residual RMS / σ above which the material is outside the prior
+  double misfit_limit = 0.5;  // residual RMS in q above which the material is outside the prior
   bool correct = true;      // step 2
   void Validate() const;
 };

@@ -156,6 +156,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   ladder_options.model = options.model;
   ladder_options.slice = options.fit;
   ladder_options.microfacet = options.microfacet;
+  ladder_options.prior = options.prior;
   ladder_options.validate = options.validate;
   {
     const auto start = std::chrono::steady_clock::now();

@@ -30,6 +30,7 @@ struct ReconstructOptions {
   SliceFitOptions fit;
   DirectionSampleOptions directions;
   MicrofacetFitOptions microfacet;
+  PriorRungOptions prior;  // the measured prior the `prior` rung uses (default: the shipped one)
   // The model kind written: empty = every rung of the ladder fitted and the best by validation
   // chosen; a kind name ("seed", "seed_constrained", "microfacet", "ggx", "beckmann") = only
   // that rung.

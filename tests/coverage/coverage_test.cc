@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "coverage/design_request.h"
 #include "coverage/designer.h"
+#include "coverage/prior_objective.h"
 
 namespace brdfrig::coverage {
 namespace {
@@ -104,6 +105,7 @@ TEST(CoverageTest, SharedCellsCountWhatAnotherFittedPositionAlsoSees) {
 TEST(DesignerTest, DefaultRigDesignBeatsTheMirrorPlanWithinConstraints) {
   const geometry::RigGeometry rig = DefaultRig();
   DesignOptions options;
+  options.objective = "coverage";
   const auto start = std::chrono::steady_clock::now();
   const PlanDesign design = DesignPlan(rig, options);
   const double seconds =
@@ -132,6 +134,42 @@ TEST(DesignerTest, DefaultRigDesignBeatsTheMirrorPlanWithinConstraints) {
   // Deterministic: the same rig and request give the same plan (a resumed session relies on it).
   const PlanDesign again = DesignPlan(rig, options);
   EXPECT_EQ(again.Positions(), design.Positions());
+}
+
+// The prior's objective (prior_objective.h) against the coverage design of the same rig: the
+// plan chosen for the prior must reconstruct the training materials, each left out of the
+// covariance that judges it, better than the coverage plan does.
+TEST(DesignerTest, PriorDesignReconstructsLeftOutMaterialsBetterThanTheCoverageDesign) {
+  const geometry::RigGeometry rig = DefaultRig();
+  DesignOptions options;
+  ASSERT_EQ(options.objective, "prior");  // the default
+  const auto start = std::chrono::steady_clock::now();
+  const PlanDesign design = DesignPlan(rig, options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("%s(%.2f s)\n", design.ToString().c_str(), seconds);
+  ASSERT_EQ(design.positions.size(), 6u);
+  for (const DesignedPosition& d : design.positions) {
+    EXPECT_EQ(CheckDesignConstraints(rig, d.coverage.axes, options), "");
+    EXPECT_GT(d.prior_gain, 0) << "every position lowers the expected error";
+  }
+  EXPECT_LT(design.expected_rms, 0.5 * design.prior_only_rms);
+
+  DesignOptions coverage_options;
+  coverage_options.objective = "coverage";
+  const PlanDesign coverage_design = DesignPlan(rig, coverage_options);
+  const PriorObjective objective(prior::DefaultPrior(), options.prior_components,
+                                 options.search_grid.samples_per_side);
+  const auto loo = [&](const PlanDesign& d) {
+    Eigen::MatrixXd total = Eigen::MatrixXd::Zero(objective.components(), objective.components());
+    for (const auto& axes : d.Positions()) total += objective.Information(rig, axes);
+    return objective.RmsPerNode(objective.LeaveOneOutError(total));
+  };
+  EXPECT_NEAR(loo(design), design.leave_one_out_rms, 1e-9);
+  EXPECT_LT(loo(design), loo(coverage_design));
+  std::printf("leave-one-material-out RMS per node: prior design %.4f, coverage design %.4f\n",
+              loo(design), loo(coverage_design));
+  EXPECT_EQ(DesignPlan(rig, options).Positions(), design.Positions());  // deterministic
 }
 
 TEST(DesignerTest, ValidationPositionsComeAfterTheFittedOnes) {

@@ -92,12 +92,55 @@ TEST(MeasuredPrior, LeftOutMaterialIsReconstructedFromPartialDataBetterThanTheMe
   EXPECT_LT(fit_error, 0.5 * mean_error) << fit_error << " vs the mean's " << mean_error;
 }
 
+// Step 2 of the fit: where samples are, the table follows them more closely than the prior's
+// components alone can.
+TEST(MeasuredPrior, CorrectionMovesTheTableTowardsTheSamplesWhereTheyAre) {
+  PriorBuildOptions options = SmallOptions();
+  options.noise_sigma = 1;  // a strong prior: the components leave visible residuals
+  const MeasuredPrior p = BuildPrior(Set(), options, 42);
+  const brdf::TableValues& truth = Set().tables[42];
+  const std::vector<Observation> seen = Observe(truth, p.grid, 0.3);
+  PriorFitOptions plain;
+  plain.correct = false;
+  const PriorFitResult without = FitPrior(p, seen, plain);
+  const PriorFitResult with = FitPrior(p, seen, {});
+  const auto error_at_samples = [&](const brdf::TableValues& table) {
+    const brdf::RusinkiewiczTable t(p.grid, table);
+    double sum = 0;
+    for (const Observation& o : seen) {
+      const brdf::Rgb f = t.EvalLocal(o.l, o.v);
+      const double c = brdf::CosineProduct(p.grid, o.l, o.v);
+      for (int ch = 0; ch < 3; ++ch) {
+        sum += std::pow(brdf::MapValue(p.grid, f[ch], c) - brdf::MapValue(p.grid, o.f[ch], c), 2);
+      }
+    }
+    return std::sqrt(sum / (3.0 * seen.size()));
+  };
+  EXPECT_LT(error_at_samples(with.table), 0.5 * error_at_samples(without.table))
+      << error_at_samples(with.table) << " vs " << error_at_samples(without.table);
+}
+
 TEST(MeasuredPrior, TrainingMaterialFromDenseDataIsAlmostExact) {
   const MeasuredPrior p = BuildPrior(Set(), SmallOptions());
   const brdf::TableValues& truth = Set().tables[10];
   const PriorFitResult fit = FitPrior(p, Observe(truth, p.grid, M_PI / 2), {});
   EXPECT_LT(TableRms(fit.table, truth), 0.05);
   EXPECT_FALSE(fit.outside_prior) << fit.misfit;
+}
+
+// A "material" no gonioreflectometer measured (values scattered over four decades with no
+// structure) leaves residuals the components cannot explain; a left-out real one does not.
+TEST(MeasuredPrior, AMaterialUnlikeTheTrainingSetIsFlaggedOutsideThePrior) {
+  PriorBuildOptions options = SmallOptions();
+  options.noise_sigma = 1;
+  const MeasuredPrior p = BuildPrior(Set(), options, 20);
+  std::vector<Observation> real = Observe(Set().tables[20], p.grid, 0.6);
+  EXPECT_FALSE(FitPrior(p, real, {}).outside_prior) << FitPrior(p, real, {}).misfit;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> decades(-2, 2);
+  for (Observation& o : real) o.f = brdf::Rgb::Constant(std::pow(10.0, decades(rng)));
+  const PriorFitResult odd = FitPrior(p, real, {});
+  EXPECT_TRUE(odd.outside_prior) << odd.misfit;
 }
 
 TEST(MeasuredPrior, FileRoundTripsAndBrokenFilesNameTheProblem) {
