@@ -1,19 +1,24 @@
 // Frame time of the 50K-triangle test object at 1280×720 with each material shader, in one run,
 // as a ratio to Lambert (the floor of any shading): the seed's slices, the reference GGX, the
 // model ladder's microfacet rungs (ggx, beckmann, the data-driven table: issue 14 asks the
-// default rung for <= 1.5x Lambert) and a MERL table.
-// Run: build/release/bench/bench_render_frame [frames per round] [rounds]
+// default rung for <= 1.5x Lambert), the prior rung's Rusinkiewicz table (of the measured
+// "steel" on the default 64 x 32 x 8 grid; the same target) and a MERL table.
+// Run: build/release/bench/bench_render_frame [frames per round] [rounds] [name filter]
+// (with a filter, only Lambert and the shaders whose name contains it)
 // On a shared machine use short rounds and many of them: the best round of each shader is the
 // one least disturbed by other work.
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "brdf/analytic.h"
 #include "brdf/merl.h"
 #include "brdf/microfacet_model.h"
 #include "brdf/microfacet_terms.h"
+#include "brdf/nbrdf_library.h"
+#include "brdf/rusinkiewicz_table.h"
 #include "brdf/slice_model.h"
 #include "common/angles.h"
 #include "geometry/camera.h"
@@ -109,8 +114,19 @@ int main(int argc, char** argv) {
   auto linear = render::GpuMaterial::SliceModel(SixSlices());
   linear->SetLinearInterpolation(true);
   entries.push_back({"slice model (linear)", std::move(linear)});
+  const brdf::RusinkiewiczGrid grid;
+  const brdf::RusinkiewiczTable prior(grid,
+                                      brdf::TabulateBrdf(brdf::ReadNbrdfMaterial("steel"), grid));
+  entries.push_back({"prior table (steel, 64x32x8)", render::GpuMaterial::Table(prior)});
   entries.push_back(
       {"merl table", render::GpuMaterial::Merl(brdf::MerlTable::Tabulate(brdf::Ggx(ggx)))});
+
+  if (argc > 3) {
+    const std::string filter = argv[3];
+    std::erase_if(entries, [&](const Entry& e) {
+      return e.name != "lambert" && e.name.find(filter) == std::string::npos;
+    });
+  }
 
   // Interleave rounds so machine noise hits every shader alike; keep each shader's best round.
   std::vector<double> best(entries.size(), 1e300);

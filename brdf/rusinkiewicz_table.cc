@@ -44,14 +44,18 @@ HalfDiffAngles ToHalfDiffAngles(const Vec3& l, const Vec3& v) {
   const double norm = sum.norm();
   const Vec3 h = norm > 1e-300 ? Vec3(sum / norm) : Vec3::UnitZ();
   HalfDiffAngles a;
-  a.theta_h = std::acos(std::clamp(h.z(), -1.0, 1.0));
+  // atan2, not acos: acos(1 − 1e-16) is already 1.5e-8 rad, and the sqrt-spaced θh index
+  // magnifies a small θh's error (the shader computes the same way, in float).
+  a.theta_h = std::atan2(std::hypot(h.x(), h.y()), h.z());
   const double phi_h = std::atan2(h.y(), h.x());
   // d = R_y(−θh) · R_z(−φh) · l
   const double cp = std::cos(phi_h), sp = std::sin(phi_h);
   const double x1 = cp * l.x() + sp * l.y(), y1 = -sp * l.x() + cp * l.y(), z1 = l.z();
   const double ct = std::cos(a.theta_h), st = std::sin(a.theta_h);
   const double dx = ct * x1 - st * z1, dz = st * x1 + ct * z1;
-  a.theta_d = std::acos(std::clamp(dz, -1.0, 1.0));
+  // From both components, so that θd is a function of the directions only: acos(dz) of a
+  // float-rounded l (|l| = 1 − 6e-8) puts θd at 3.5e-4 rad for l = v.
+  a.theta_d = std::atan2(std::hypot(dx, y1), dz);
   double phi = std::abs(std::atan2(y1, dx));
   if (phi > kHalfPi) phi = M_PI - phi;
   a.phi_d = phi;

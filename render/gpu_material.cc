@@ -158,6 +158,35 @@ std::unique_ptr<GpuMaterial> GpuMaterial::Microfacet(const brdf::MicrofacetModel
   return m;
 }
 
+std::unique_ptr<GpuMaterial> GpuMaterial::Table(const brdf::RusinkiewiczTable& table) {
+  const brdf::RusinkiewiczGrid& grid = table.grid();
+  const brdf::TableValues& q = table.values();
+  std::unique_ptr<GpuMaterial> m(new GpuMaterial);
+  m->kind_ = Kind::kTable;
+  m->table_grid_ = grid;
+  m->Build({"rusinkiewicz_table.glsl"}, Defines("MATERIAL_TABLE"));
+  // An RGBA32F buffer texture in node order (the shader's eight texelFetch reads cost about
+  // half of a 3D texture's on llvmpipe); GL guarantees only 65536 texels.
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (grid.Cells() > max_texels) {
+    throw Error("the renderer's GL supports tables of at most " + std::to_string(max_texels) +
+                " nodes, the table has " + std::to_string(grid.Cells()));
+  }
+  const std::size_t cells = static_cast<std::size_t>(grid.Cells());
+  std::vector<float> rgba(4 * cells, 0.0f);
+  for (std::size_t i = 0; i < cells; ++i) {
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = static_cast<float>(q[c][i]);
+  }
+  glCreateBuffers(1, &m->buffer_);
+  glNamedBufferData(m->buffer_, static_cast<GLsizeiptr>(rgba.size() * sizeof(float)), rgba.data(),
+                    GL_STATIC_DRAW);
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &m->texture_);
+  m->texture_target_ = GL_TEXTURE_BUFFER;
+  glTextureBuffer(m->texture_, GL_RGBA32F, m->buffer_);
+  return m;
+}
+
 std::unique_ptr<GpuMaterial> GpuMaterial::ForBrdf(const brdf::Brdf& brdf) {
   if (const auto* slices = dynamic_cast<const brdf::SliceModel*>(&brdf)) {
     return SliceModel(*slices);
@@ -170,11 +199,15 @@ std::unique_ptr<GpuMaterial> GpuMaterial::ForBrdf(const brdf::Brdf& brdf) {
   }
   if (const auto* ggx = dynamic_cast<const brdf::Ggx*>(&brdf)) return Ggx(ggx->params());
   if (const auto* table = dynamic_cast<const brdf::MerlTable*>(&brdf)) return Merl(*table);
+  if (const auto* table = dynamic_cast<const brdf::RusinkiewiczTable*>(&brdf)) return Table(*table);
   return Merl(brdf::MerlTable::Tabulate(brdf));
 }
 
 std::unique_ptr<GpuMaterial> GpuMaterial::ForMaterial(const brdf::Material& material) {
   if (brdf::IsSliceKind(material.kind)) return SliceModel(material.Slices());
+  if (material.kind == brdf::ModelKind::kPrior) {
+    return Table(brdf::RusinkiewiczTable(material.table_grid, material.table));
+  }
   return ForBrdf(*material.Model());
 }
 
@@ -229,6 +262,23 @@ void GpuMaterial::Bind(const GlProgram& program) const {
     case Kind::kMerl:
       program.Set("uMerl", 0);
       break;
+    case Kind::kTable: {
+      const brdf::RusinkiewiczGrid& g = table_grid_;
+      program.Set("uTable", 0);
+      // In double, then rounded once: the index scales the CPU computes in StencilAt.
+      program.Set("uTableScale",
+                  Eigen::Vector3f(static_cast<float>((g.phi_d - 1) / (M_PI / 2)),
+                                  static_cast<float>((g.theta_d - 1) / (M_PI / 2)),
+                                  static_cast<float>((g.theta_h - 1) / std::sqrt(M_PI / 2))));
+      program.Set("uTableLast", Eigen::Vector3f(static_cast<float>(g.phi_d - 1),
+                                                static_cast<float>(g.theta_d - 1),
+                                                static_cast<float>(g.theta_h - 1)));
+      program.Set("uTableStrideD", g.phi_d);
+      program.Set("uTableStrideH", g.theta_d * g.phi_d);
+      program.Set("uTableEpsilon", static_cast<float>(g.epsilon));
+      program.Set("uTableCosFloor", static_cast<float>(g.cos_floor));
+      break;
+    }
   }
 }
 

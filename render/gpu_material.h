@@ -1,6 +1,7 @@
 // A material on the GPU: its shading program and parameters. The slice model's slices go to a
 // small uniform buffer (4 parameters × slices, rgb = channels, plus the knots); so do the
-// microfacet rungs' parameters (their ln D table, Fresnel knots, colours and roughness).
+// microfacet rungs' parameters (their ln D table, Fresnel knots, colours and roughness). The
+// prior's Rusinkiewicz table goes to a float buffer texture of its node values q.
 #pragma once
 
 #include <memory>
@@ -12,6 +13,7 @@
 #include "brdf/material_file.h"
 #include "brdf/merl.h"
 #include "brdf/microfacet_model.h"
+#include "brdf/rusinkiewicz_table.h"
 #include "brdf/slice_model.h"
 #include "render/gl_program.h"
 
@@ -32,6 +34,10 @@ class GpuMaterial {
   static std::unique_ptr<GpuMaterial> Merl(const brdf::MerlTable& table);
   // The ggx, beckmann and microfacet (table) rungs, each with its own shader.
   static std::unique_ptr<GpuMaterial> Microfacet(const brdf::MicrofacetModel& model);
+  // The prior rung's table (shaders/rusinkiewicz_table.glsl): its q values in an RGBA32F buffer
+  // texture in node order, interpolated in the shader (texelFetch) as on the CPU. Throws
+  // brdfrig::Error when the table has more nodes than GL_MAX_TEXTURE_BUFFER_SIZE.
+  static std::unique_ptr<GpuMaterial> Table(const brdf::RusinkiewiczTable& table);
   // Any BRDF: the kinds above get their own shader; any other model is tabulated into a MERL
   // table (35 MB on the GPU) and drawn with the table shader.
   static std::unique_ptr<GpuMaterial> ForBrdf(const brdf::Brdf& brdf);
@@ -61,13 +67,14 @@ class GpuMaterial {
   GLuint texture_ = 0;
   GLenum texture_target_ = 0;
   void UploadSliceBlock();
-  GLuint buffer_ = 0;         // slice and microfacet models: their uniform buffer
+  GLuint buffer_ = 0;  // slice and microfacet models: their uniform buffer; the table: its texels
   std::vector<float> block_;  // its std140 contents
   int slice_count_ = 0;
   bool linear_ = false;
   brdf::Rgb albedo_ = brdf::Rgb::Zero();
   brdf::MicrofacetParams ggx_;
-  enum class Kind { kSlice, kLambert, kGgx, kMerl, kMicrofacet } kind_ = Kind::kLambert;
+  brdf::RusinkiewiczGrid table_grid_;
+  enum class Kind { kSlice, kLambert, kGgx, kMerl, kMicrofacet, kTable } kind_ = Kind::kLambert;
 };
 
 // Evaluates the slice model's GLSL code at each (theta_in, theta) of `angles` (CV_32FC2) into a
