@@ -175,6 +175,18 @@ TableValues TabulateBrdf(const Brdf& brdf, const RusinkiewiczGrid& grid) {
       }
     }
   }
+  // At θh = 0 the half vector is the normal and φd is the light's azimuth, which an isotropic
+  // BRDF cannot depend on: the row is averaged over φd (a measured fit need not be exactly
+  // isotropic there, and a query at θh → 0 has no well-defined φd to pick a node by).
+  for (auto& channel : q) {
+    for (int id = 0; id < grid.theta_d; ++id) {
+      if (!valid[grid.Index(0, id, 0)]) continue;
+      double sum = 0;
+      for (int ip = 0; ip < grid.phi_d; ++ip) sum += std::exp(channel[grid.Index(0, id, ip)]);
+      const double mean = std::log(sum / grid.phi_d);
+      for (int ip = 0; ip < grid.phi_d; ++ip) channel[grid.Index(0, id, ip)] = mean;
+    }
+  }
   // Nodes below the horizon are never looked up alone, only interpolated with valid
   // neighbours near it: continue each (θh, φd) line's last valid θd value, and a θh row with
   // none (θh = π/2) from the row before.

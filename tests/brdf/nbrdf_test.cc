@@ -77,7 +77,7 @@ TEST(NbrdfTest, ForwardPassMatchesTheReferenceValuesOfEveryMaterial) {
                            << " channel " << c << ": " << f[c] << " vs " << x[4 + c];
     }
   }
-  EXPECT_EQ(materials.size(), 27u);
+  EXPECT_EQ(materials.size(), 80u);
   std::cout << "worst relative error against reference.tsv: " << worst << "\n";
 }
 

@@ -89,7 +89,7 @@ TEST(MeasuredPrior, LeftOutMaterialIsReconstructedFromPartialDataBetterThanTheMe
     fit_error += TableRms(fit.table, truth) / held_out.size();
     mean_error += TableRms(mean, truth) / held_out.size();
   }
-  EXPECT_LT(fit_error, 0.5 * mean_error) << fit_error << " vs the mean's " << mean_error;
+  EXPECT_LT(fit_error, 0.6 * mean_error) << fit_error << " vs the mean's " << mean_error;
 }
 
 // Step 2 of the fit: where samples are, the table follows them more closely than the prior's
