@@ -8,6 +8,10 @@
 //
 //   bench_prior_study [--materials a,b,...] [--counts 4,6,8,12] [--components K]
 //                     [--noise SIGMA] [--correction W] [--loo-design] [--no-compact]
+//                     [--rig-changes] [--objective prior|coverage]
+// --rig-changes: the 6-position design of the default rig and of the rig with one change (a
+// cut-out 1.5 times larger, the light at 0.6 of its distance, an extra axis turning the camera
+// about the normal), each with its leave-one-material-out figures.
 //
 // Prints per material the sphere PSNR of the prior, ggx and microfacet rungs, the worst
 // albedo ratio over 0-75°, and a summary per position count.
@@ -95,13 +99,40 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
   return j;
 }
 
+struct RigVariant {
+  std::string name;
+  geometry::RigGeometry rig;
+};
+
+std::vector<RigVariant> RigChanges(const geometry::RigGeometry& rig) {
+  std::vector<RigVariant> out = {{"default rig", rig}};
+  geometry::RigGeometry cut = rig;
+  cut.target.cutout_width *= 1.5;
+  cut.target.cutout_height *= 1.5;
+  out.push_back({"cut-out 1.5x (150 mm)", cut});
+  geometry::RigGeometry light = rig;
+  light.light_position *= 0.6;
+  out.push_back({"light at 0.6x distance", light});
+  geometry::RigGeometry axis = rig;
+  geometry::RotationAxis azimuth;
+  azimuth.name = "camera_azimuth";
+  azimuth.moves = geometry::RotationAxis::Moves::kCamera;
+  azimuth.direction = geometry::Vec3::UnitZ();
+  azimuth.min = -M_PI;
+  azimuth.max = M_PI;
+  axis.axes.insert(axis.axes.begin() + 1, azimuth);  // after camera_arm: turns the arm's plane
+  out.push_back({"extra axis: camera azimuth", axis});
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> names;
   std::vector<int> counts = {6};
   prior::PriorBuildOptions build;
-  bool loo_design = false, compact = true;
+  bool loo_design = false, compact = true, rig_changes = false;
+  std::string objective = "prior";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -120,6 +151,10 @@ int main(int argc, char** argv) {
       loo_design = true;
     } else if (a == "--no-compact") {
       compact = false;
+    } else if (a == "--objective") {
+      objective = next();
+    } else if (a == "--rig-changes") {
+      rig_changes = true;
     } else {
       std::fprintf(stderr, "unknown argument %s\n", a.c_str());
       return 2;
@@ -136,11 +171,18 @@ int main(int argc, char** argv) {
               "%.3g, correction %.3g), noise-free samples at the plan's directions, %s plans\n",
               names.size(), full.Components(), build.noise_sigma, build.correction_weight,
               loo_design ? "left-out" : "all-material");
+  std::vector<RigVariant> variants = {{"default rig", rig}};
+  if (rig_changes) variants = RigChanges(rig);
+  for (const RigVariant& variant : variants) {
   for (const int count : counts) {
     coverage::DesignOptions design;
     design.count = count;
     design.prior = &full;
-    std::vector<geometry::AxisPositions> plan = coverage::DesignPlan(rig, design).Positions();
+    design.objective = objective;
+    const coverage::PlanDesign designed = coverage::DesignPlan(variant.rig, design);
+    std::vector<geometry::AxisPositions> plan = designed.Positions();
+    std::printf("\n%s, %d positions: design RMS per node %.3f expected, %.3f leave-one-out\n",
+                variant.name.c_str(), count, designed.expected_rms, designed.leave_one_out_rms);
     std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s %8s\n", count, "material", "prior",
                 "ggx", "micro", "albedo", "misfit", "outside");
     std::map<std::string, std::vector<double>> sphere;
@@ -157,10 +199,10 @@ int main(int argc, char** argv) {
       const prior::MeasuredPrior loo = prior::BuildPrior(set, build, index);
       if (loo_design) {
         design.prior = &loo;
-        plan = coverage::DesignPlan(rig, design).Positions();
+        plan = coverage::DesignPlan(variant.rig, design).Positions();
       }
       const brdf::NeuralBrdf truth = brdf::ReadNbrdfMaterial(name);
-      const auto positions = PlanSamples(truth, rig, plan);
+      const auto positions = PlanSamples(truth, variant.rig, plan);
       std::vector<const reconstruct::PositionSamples*> all;
       for (const auto& p : positions) all.push_back(&p);
       reconstruct::LadderOptions options;
@@ -201,6 +243,7 @@ int main(int argc, char** argv) {
     const long within = std::count_if(albedo.begin(), albedo.end(), [](double a) { return a <= 0.1; });
     std::printf("%d positions, prior albedo within 10 %% at 0-75°: %ld of %zu; outside the prior: "
                 "%d\n", count, within, albedo.size(), outside);
+  }
   }
   return 0;
 }
