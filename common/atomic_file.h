@@ -1,6 +1,7 @@
 // Writing files so that a crash at any instant leaves either the old file or the complete new
 // one, never a torn file: write to a temporary name in the same directory, fsync, rename,
-// fsync the directory.
+// fsync the directory. The temporary is created exclusively under a fresh unique name, so a
+// file or symlink someone planted beside the target is never followed nor overwritten.
 #pragma once
 
 #include <cstddef>
@@ -16,9 +17,11 @@ void WriteFileAtomically(const std::filesystem::path& path, std::span<const std:
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view text);
 
 // The two halves of WriteFileAtomically, for callers that act between them (e.g. record a
-// checkpoint): write `path` and fsync it (removed again on failure); rename `from` to `to` and
-// fsync the directory (`from` removed on failure).
-void WriteFileAndSync(const std::filesystem::path& path, std::span<const std::byte> bytes);
+// checkpoint): create a new temporary beside `target` ("NAME.tmp-PID-RANDOM", O_CREAT|O_EXCL|
+// O_NOFOLLOW), write `bytes`, fsync it and return its path (removed again on failure); rename
+// `from` to `to` and fsync the directory (`from` removed on failure).
+std::filesystem::path WriteTemporaryAndSync(const std::filesystem::path& target,
+                                            std::span<const std::byte> bytes);
 void RenameAndSync(const std::filesystem::path& from, const std::filesystem::path& to);
 
 // Inputs a user or client feeds are text files of modest size: the cap keeps a mistaken or
