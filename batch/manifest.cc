@@ -4,6 +4,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::batch {
 
@@ -88,7 +89,7 @@ std::string SerializeManifest(const Manifest& manifest) {
 Manifest ReadManifest(const fs::path& file) {
   const std::string where = file.string();
   try {
-    const json root = json::parse(ReadFileToString(file));
+    const json root = ParseJson(ReadFileToString(file), where);
     if (root.value("format", "") != kFormat || root.value("version", 0) != kVersion) {
       throw FileError(where, std::string("not a ") + kFormat + " version " +
                                  std::to_string(kVersion) + " file");

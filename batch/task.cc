@@ -9,6 +9,7 @@
 #include "batch/manifest.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::batch {
 
@@ -98,7 +99,7 @@ std::string SerializeTaskResult(const TaskResult& result) {
 
 TaskResult ReadTaskResult(const fs::path& file) {
   try {
-    const json root = json::parse(ReadFileToString(file));
+    const json root = ParseJson(ReadFileToString(file), file.string());
     TaskResult result;
     result.index = root.at("index").get<int>();
     result.item.input = root.at("capture").get<std::string>();

@@ -119,5 +119,29 @@ TEST_F(JobTest, CollectSaysWhyItemsFailedAndResubmitsOnlyFailedAndResultlessOnes
   EXPECT_EQ(report.ToResubmit(), (std::vector<int>{0}));
 }
 
+// Issue 25, finding 5: a results/<i>.json nested 200,000 arrays deep crashed collect (the
+// reader copied the value); now a FileError naming the file, like any malformed result.
+TEST(TaskResultTest, TooDeepResultIsAFileErrorNamingTheFile) {
+  const fs::path file = fs::temp_directory_path() / "batch_deep_result.json";
+  TaskResult result;
+  result.index = 0;
+  result.item.status = reconstruct::BatchItem::Status::kDone;
+  std::string text = SerializeTaskResult(result);
+  const std::string empty = "\"degraded\": []";
+  const std::size_t degraded = text.find(empty);
+  ASSERT_NE(degraded, std::string::npos) << text;
+  text.replace(degraded, empty.size(),
+               "\"degraded\": " + std::string(200000, '[') + std::string(200000, ']'));
+  WriteFileAtomically(file, text);
+  try {
+    (void)ReadTaskResult(file);
+    FAIL() << "a 200,000 deep result was read";
+  } catch (const FileError& e) {
+    EXPECT_EQ(e.file(), file.string());
+    EXPECT_NE(std::string(e.what()).find("nested more than 64 deep"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace brdfrig::batch

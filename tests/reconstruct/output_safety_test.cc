@@ -1,0 +1,84 @@
+// Issue 25: nothing a user writes or a disk does loses a material or stops a batch. A material
+// nested too deep in the output tree is redone, not a crash; an output path that is a file is
+// that capture's error; a failed write is an error of the run, never a dropped position; two
+// captures of one name are refused before any work.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "reconstruct/batch.h"
+#include "tests/reconstruct/capture_fixture.h"
+
+namespace brdfrig::reconstruct {
+namespace {
+
+namespace fs = std::filesystem;
+
+class OutputSafetyTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = new fs::path(fs::temp_directory_path() / "brdfrig_output_safety");
+    fs::remove_all(*root_);
+    testing::SceneSpec spec;
+    spec.width = 320;
+    spec.height = 240;
+    spec.supersampling = 2;
+    spec.positions =
+        "[{camera_arm: 20, light_arm: -20}, {camera_arm: 35, light_arm: -35}, "
+        "{camera_arm: 50, light_arm: -50}]";
+    const brdf::Material truth = testing::FlatSliceTruth();
+    fs::create_directories(*root_ / "arch");
+    for (const char* name : {"c1", "c2"}) {
+      (void)testing::SimulateCapture(*root_ / "work" / name, spec, &truth);
+      fs::rename(*root_ / "work" / name / "capture", *root_ / "arch" / name);
+    }
+  }
+  static void TearDownTestSuite() { delete root_; }
+
+  static BatchOptions Options(std::vector<fs::path> inputs, const fs::path& output) {
+    BatchOptions options;
+    options.inputs = std::move(inputs);
+    options.output = output;
+    options.jobs = 2;
+    options.reconstruct.model = "seed";
+    return options;
+  }
+
+  static fs::path Fresh(const std::string& name) {
+    const fs::path dir = *root_ / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+  }
+
+  static fs::path* root_;
+};
+fs::path* OutputSafetyTest::root_ = nullptr;
+
+// Finding 5: a material.json nested 200,000 arrays deep in the output tree crashed the whole
+// `reconstruct -j 2` (exit 139, no capture processed); it is unreadable, so it is redone.
+TEST_F(OutputSafetyTest, TooDeepMaterialInTheOutputTreeIsRedoneNotACrash) {
+  const fs::path fits = Fresh("deep");
+  fs::create_directories(fits / "c1");
+  std::ofstream(fits / "c1" / "material.json")
+      << "{\"version\": 2, \"format\": " << std::string(200000, '[') << std::string(200000, ']')
+      << "}";
+  try {
+    (void)brdf::ReadMaterialFile(fits / "c1" / "material.json");
+    FAIL() << "a 200,000 deep material was read";
+  } catch (const FileError& e) {
+    EXPECT_EQ(e.file(), (fits / "c1" / "material.json").string());
+  }
+  const std::vector<BatchItem> items = ReconstructBatch(Options({*root_ / "arch"}, fits));
+  ASSERT_EQ(items.size(), 2u);
+  for (const BatchItem& item : items) {
+    EXPECT_EQ(item.status, BatchItem::Status::kDone) << item.input << ": " << item.message;
+  }
+  EXPECT_EQ(BatchExitStatus(items), 0);
+  EXPECT_NO_THROW((void)brdf::ReadMaterialFile(fits / "c1" / "material.json"));
+}
+
+}  // namespace
+}  // namespace brdfrig::reconstruct
