@@ -25,8 +25,8 @@ Manifest PrepareJob(const PrepareOptions& options, const reconstruct::ProgressCa
                     "choose a new job directory");
   }
   const Manifest manifest = MakeManifest(options.batch, progress);
-  fs::create_directories(dir.results());
-  fs::create_directories(dir.logs());
+  CreateDirectories(dir.results());
+  CreateDirectories(dir.logs());
   if (!manifest.items.empty()) {
     WriteFileAtomically(dir.script(),
                         SbatchScript(options.sbatch, dir, static_cast<int>(manifest.items.size())));

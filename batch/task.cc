@@ -67,7 +67,7 @@ TaskResult RunTask(const JobDir& dir, int index, const reconstruct::ProgressCall
   const std::string array_job = Environment("SLURM_ARRAY_JOB_ID");
   if (!array_job.empty()) result.job = array_job + "_" + Environment("SLURM_ARRAY_TASK_ID");
   result.host = HostName();
-  fs::create_directories(dir.results());
+  CreateDirectories(dir.results());
   // An earlier attempt's result would speak for this one if this one were killed.
   fs::remove(dir.result(index));
   reconstruct::BatchOptions options = manifest.options;

@@ -77,6 +77,14 @@ void RenameAndSync(const std::filesystem::path& from, const std::filesystem::pat
   SyncDirectory(to.parent_path());
 }
 
+void CreateDirectories(const std::filesystem::path& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) {
+    throw OutputError("cannot create directory '" + dir.string() + "': " + error.message());
+  }
+}
+
 void WriteFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {
   RenameAndSync(WriteTemporaryAndSync(path, bytes), path);
 }

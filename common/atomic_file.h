@@ -34,6 +34,10 @@ inline constexpr std::size_t kMaxInputFileBytes = std::size_t{64} << 20;  // 64 
 std::string ReadFileToString(const std::filesystem::path& path,
                              std::size_t max_bytes = kMaxInputFileBytes);
 
+// std::filesystem::create_directories for an output: a component that is a file, or one that
+// cannot be made, is an OutputError naming `dir` (not a std::filesystem::filesystem_error).
+void CreateDirectories(const std::filesystem::path& dir);
+
 // fsync of a directory, so that a rename inside it is durable.
 void SyncDirectory(const std::filesystem::path& dir);
 

@@ -188,7 +188,7 @@ void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
       }
       ReconstructOptions reconstruct = options.reconstruct;
       reconstruct.hdr_dir = out_dir / "hdr";
-      fs::create_directories(out_dir);
+      CreateDirectories(out_dir);
       ReconstructionResult result = Reconstruct(capture, reconstruct, [&](const std::string& m) {
         if (progress) progress(name + ": " + m);
       });
@@ -206,6 +206,9 @@ void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
                           : "");
     }
   } catch (const Error& e) {
+    item.status = BatchItem::Status::kFailed;
+    item.message = e.what();
+  } catch (const fs::filesystem_error& e) {  // one capture's paths never stop the others
     item.status = BatchItem::Status::kFailed;
     item.message = e.what();
   }

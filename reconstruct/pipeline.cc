@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/format.h"
 #include "common/sha256.h"
@@ -82,7 +83,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   ReconstructionResult result;
   result.warnings = capture.warnings;
   for (const std::string& w : capture.warnings) say("warning: " + w);
-  if (!options.hdr_dir.empty()) std::filesystem::create_directories(options.hdr_dir);
+  if (!options.hdr_dir.empty()) CreateDirectories(options.hdr_dir);
 
   // Stage 1: measure every position. Validation positions (the plan's, or named in the
   // options) are measured to score the ladder's rungs, never fitted.

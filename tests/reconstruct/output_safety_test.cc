@@ -80,5 +80,23 @@ TEST_F(OutputSafetyTest, TooDeepMaterialInTheOutputTreeIsRedoneNotACrash) {
   EXPECT_NO_THROW((void)brdf::ReadMaterialFile(fits / "c1" / "material.json"));
 }
 
+// Finding 5: `fits/c2` a regular file aborted `reconstruct arch -o fits -j 2` with an uncaught
+// std::filesystem::filesystem_error (exit 134) and c1 was not processed.
+TEST_F(OutputSafetyTest, OutputPathThatIsAFileIsThatCapturesErrorTheOthersAreDone) {
+  const fs::path fits = Fresh("file_in_the_way");
+  std::ofstream(fits / "c2") << "a file where c2's directory goes";
+  for (const int jobs : {2, 1}) {
+    BatchOptions options = Options({*root_ / "arch"}, fits);
+    options.jobs = jobs;
+    options.force = true;
+    const std::vector<BatchItem> items = ReconstructBatch(options);
+    ASSERT_EQ(items.size(), 2u);
+    EXPECT_EQ(items[0].status, BatchItem::Status::kDone) << items[0].message;
+    EXPECT_EQ(items[1].status, BatchItem::Status::kFailed);
+    EXPECT_NE(items[1].message.find((fits / "c2").string()), std::string::npos) << items[1].message;
+    EXPECT_EQ(BatchExitStatus(items), 1);
+  }
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct
