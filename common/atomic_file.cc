@@ -18,7 +18,7 @@ namespace brdfrig {
 namespace {
 
 [[noreturn]] void ThrowSystem(const std::string& what, const std::filesystem::path& path, int err) {
-  throw Error(what + " '" + path.string() + "': " + std::strerror(err));
+  throw OutputError(what + " '" + path.string() + "': " + std::strerror(err));
 }
 
 }  // namespace

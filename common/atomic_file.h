@@ -12,7 +12,8 @@
 
 namespace brdfrig {
 
-// Throws brdfrig::Error naming the path and the system error (e.g. "No space left on device").
+// Throws brdfrig::OutputError naming the path and the system error (e.g. "No space left on
+// device"); so do the functions below that write.
 void WriteFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view text);
 

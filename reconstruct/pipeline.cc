@@ -117,6 +117,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
                               data.report.warnings};
       (validation ? validation_positions : fit_positions).push_back(std::move(samples));
       result.positions.push_back(std::move(data.report));
+    } catch (const OutputError&) {
+      throw;  // a debug file that cannot be written fails the run, never drops the position
     } catch (const Error& e) {
       PositionReport report;
       report.index = position.index;

@@ -98,5 +98,26 @@ TEST_F(OutputSafetyTest, OutputPathThatIsAFileIsThatCapturesErrorTheOthersAreDon
   }
 }
 
+// Finding 1: on a full disk the positions whose HDR files failed to write were dropped and a
+// material fitted from the rest replaced the good one (exit 3). A failed write is an error of
+// the run: exit 1, the previous material untouched. The write is made to fail for any user,
+// root included, by a non-empty directory where hdr/p01.exr is renamed into place.
+TEST_F(OutputSafetyTest, AFailedHdrWriteFailsTheRunAndKeepsThePreviousMaterial) {
+  const fs::path out = Fresh("hdr_write_fails");
+  BatchOptions options = Options({*root_ / "arch" / "c1"}, out / "material.json");
+  ASSERT_EQ(BatchExitStatus(ReconstructBatch(options)), 0);
+  const std::string good = ReadFileToString(out / "material.json");
+  fs::remove(out / "hdr" / "p01.exr");
+  fs::create_directories(out / "hdr" / "p01.exr" / "in_the_way");
+  options.force = true;
+  const std::vector<BatchItem> items = ReconstructBatch(options);
+  ASSERT_EQ(items.size(), 1u);
+  EXPECT_EQ(items[0].status, BatchItem::Status::kFailed) << items[0].message;
+  EXPECT_NE(items[0].message.find("p01.exr"), std::string::npos) << items[0].message;
+  EXPECT_TRUE(items[0].dropped.empty());
+  EXPECT_EQ(BatchExitStatus(items), 1);
+  EXPECT_EQ(ReadFileToString(out / "material.json"), good);
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct
