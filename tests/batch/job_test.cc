@@ -119,6 +119,25 @@ TEST_F(JobTest, CollectSaysWhyItemsFailedAndResubmitsOnlyFailedAndResultlessOnes
   EXPECT_EQ(report.ToResubmit(), (std::vector<int>{0}));
 }
 
+// Issue 25, finding 2: two archives' captures of one name were mapped to one material path.
+TEST_F(JobTest, TwoCapturesOfOneNameAreRefusedBeforeAnyWork) {
+  fs::create_directories(root_ / "other");
+  fs::copy(root_ / "archive" / "a", root_ / "other" / "a", fs::copy_options::recursive);
+  PrepareOptions prepare;
+  prepare.batch = Options(root_ / "fits");
+  prepare.batch.inputs.push_back(root_ / "other");
+  prepare.sbatch.brdfrig = "/usr/local/bin/brdfrig";
+  prepare.job_dir = root_ / "job";
+  try {
+    (void)PrepareJob(prepare);
+    FAIL() << "archive/a and other/a were both prepared";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((root_ / "other" / "a").string()), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(root_ / "job" / "manifest.json"));
+}
+
 // Issue 25, finding 5: a results/<i>.json nested 200,000 arrays deep crashed collect (the
 // reader copied the value); now a FileError naming the file, like any malformed result.
 TEST(TaskResultTest, TooDeepResultIsAFileErrorNamingTheFile) {

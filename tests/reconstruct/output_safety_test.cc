@@ -119,5 +119,23 @@ TEST_F(OutputSafetyTest, AFailedHdrWriteFailsTheRunAndKeepsThePreviousMaterial) 
   EXPECT_EQ(ReadFileToString(out / "material.json"), good);
 }
 
+// Finding 2: archX/tile and archY/tile in one `reconstruct archX archY -o fits` both went to
+// fits/tile: both "done", one material lost. The clash is refused before any work.
+TEST_F(OutputSafetyTest, TwoCapturesOfOneNameAreRefusedBeforeAnyWork) {
+  const fs::path other = Fresh("other");
+  fs::copy(*root_ / "arch" / "c1", other / "c1", fs::copy_options::recursive);
+  const fs::path fits = *root_ / "clash_fits";
+  fs::remove_all(fits);
+  try {
+    (void)ReconstructBatch(Options({*root_ / "arch", other}, fits));
+    FAIL() << "two captures named c1 were both reconstructed into " << fits;
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find((*root_ / "arch" / "c1").string()), std::string::npos) << message;
+    EXPECT_NE(message.find((other / "c1").string()), std::string::npos) << message;
+  }
+  EXPECT_FALSE(fs::exists(fits));
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct
