@@ -67,6 +67,9 @@ TaskResult RunTask(const JobDir& dir, int index, const reconstruct::ProgressCall
   const std::string array_job = Environment("SLURM_ARRAY_JOB_ID");
   if (!array_job.empty()) result.job = array_job + "_" + Environment("SLURM_ARRAY_TASK_ID");
   result.host = HostName();
+  if (fs::is_symlink(dir.results())) {  // followed, the task would write anywhere
+    throw FileError(dir.results().string(), "a symbolic link: a task writes only in its job dir");
+  }
   CreateDirectories(dir.results());
   // An earlier attempt's result would speak for this one if this one were killed.
   fs::remove(dir.result(index));
