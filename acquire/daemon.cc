@@ -10,6 +10,7 @@
 #include "acquire/plan_check.h"
 #include "acquire/progress_json.h"
 #include "acquire/session_store.h"
+#include "common/json_parse.h"
 #include "session/session_reader.h"
 
 namespace brdfrig::acquire {
@@ -297,9 +298,9 @@ HttpResponse Daemon::ListSessions() {
 HttpResponse Daemon::Submit(const std::string& body) {
   json request;
   try {
-    request = json::parse(body);
-  } catch (const json::exception& e) {
-    return Fail(400, std::string("the body is not JSON: ") + e.what());
+    request = ParseJson(body, "request body");
+  } catch (const FileError& e) {
+    return Fail(400, e.what());
   }
   if (!request.is_object() || !request.contains("name") || !request["name"].is_string() ||
       !request.contains("plan") || !request["plan"].is_string()) {
@@ -369,14 +370,14 @@ HttpResponse Daemon::Control(const std::string& action, const std::string& body)
   std::string reason = "aborted by the operator";
   if (action == "abort" && !body.empty()) {
     try {
-      const json request = json::parse(body);
+      const json request = ParseJson(body, "request body");
       if (!request.is_object()) return Fail(400, "expected a JSON object");
       if (request.contains("reason")) {
         if (!request["reason"].is_string()) return Fail(400, "reason must be a string");
         reason = request["reason"];
       }
-    } catch (const json::exception& e) {
-      return Fail(400, std::string("the body is not JSON: ") + e.what());
+    } catch (const FileError& e) {
+      return Fail(400, e.what());
     }
   }
   std::lock_guard lock(mutex_);

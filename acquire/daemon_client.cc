@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "acquire/local_socket.h"
+#include "common/json_parse.h"
 #include "common/utf8.h"
 
 namespace brdfrig::acquire {
@@ -70,8 +71,11 @@ DaemonReply DaemonClient::Request(const std::string& method, const std::string& 
   }
   reply.status = std::atoi(answer.c_str() + space + 1);
   const std::string content = answer.substr(header_end + 4);
-  reply.body =
-      content.empty() ? nlohmann::json::object() : nlohmann::json::parse(content, nullptr, false);
+  try {
+    reply.body = content.empty() ? nlohmann::json::object() : ParseJson(content, "daemon answer");
+  } catch (const FileError&) {
+    reply.body = nlohmann::json::value_t::discarded;  // as before: the status tells the rest
+  }
   return reply;
 }
 

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -173,10 +174,12 @@ std::unique_ptr<SessionStore> SessionStore::Create(const fs::path& final_dir, co
   // creation never leaves a half-made session under the real name.
   const fs::path dir =
       parent / ("." + final_dir.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  fs::remove_all(dir);  // a leftover of this pid; a symlink there is removed, never followed
+  // mkdir(2) refuses anything that is there (fs::create_directory accepts a symlink to a
+  // directory): the session is built only in a directory this call made.
+  if (::mkdir(dir.c_str(), 0777) != 0) ThrowSystem("cannot create session directory", dir, errno);
   // A creation that fails half-way (disk full, an unreadable rig file) leaves nothing behind.
   try {
-    fs::create_directory(dir);
     fs::create_directory(dir / "frames");
     WriteFileAtomically(dir / "plan.yaml", plan.text);
 
@@ -399,9 +402,8 @@ std::string SessionStore::WriteFrame(const FrameToRecord& frame, std::span<const
   const std::string rel = FrameFileName(frame.position_index, frame.bracket_index, frame.file_index,
                                         frame.camera_file_name);
   const fs::path final_path = dir_ / rel;
-  const fs::path tmp = final_path.parent_path() / ("." + final_path.filename().string() + ".tmp");
   test_hooks::BeforeFrameWrite();
-  WriteFileAndSync(tmp, bytes);
+  const fs::path tmp = WriteTemporaryAndSync(final_path, bytes);
   test_hooks::KillPoint(test_hooks::kWriting);
   RenameAndSync(tmp, final_path);
   test_hooks::KillPoint(test_hooks::kRecording);

@@ -1,9 +1,11 @@
 #include "batch/manifest.h"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::batch {
 
@@ -18,6 +20,13 @@ constexpr int kVersion = 1;
 std::string Software() { return std::string("brdfrig ") + BRDFRIG_VERSION; }
 
 fs::path Absolute(const fs::path& p) { return fs::absolute(p).lexically_normal(); }
+
+bool IsAbsoluteAndNormal(const fs::path& p) { return p.is_absolute() && p == p.lexically_normal(); }
+
+// `path` is `dir` or below it (both absolute and normal), component by component.
+bool IsWithin(const fs::path& path, const fs::path& dir) {
+  return std::mismatch(dir.begin(), dir.end(), path.begin(), path.end()).first == dir.end();
+}
 
 }  // namespace
 
@@ -88,7 +97,7 @@ std::string SerializeManifest(const Manifest& manifest) {
 Manifest ReadManifest(const fs::path& file) {
   const std::string where = file.string();
   try {
-    const json root = json::parse(ReadFileToString(file));
+    const json root = ParseJson(ReadFileToString(file), where);
     if (root.value("format", "") != kFormat || root.value("version", 0) != kVersion) {
       throw FileError(where, std::string("not a ") + kFormat + " version " +
                                  std::to_string(kVersion) + " file");
@@ -114,9 +123,22 @@ Manifest ReadManifest(const fs::path& file) {
                                    std::to_string(manifest.items.size()) + " has index " +
                                    std::to_string(m.index));
       }
-      if (!m.capture.is_absolute() || !m.material.is_absolute()) {
-        throw FileError(where, "item " + std::to_string(m.index) +
-                                   ": capture and material paths must be absolute");
+      // A task writes only where MakeManifest put it: <output>/<capture name>/, never into a
+      // capture (a tampered path would make it overwrite any file).
+      const std::string item_name = "item " + std::to_string(m.index);
+      if (!IsAbsoluteAndNormal(m.capture) || !IsAbsoluteAndNormal(manifest.output)) {
+        throw FileError(where, item_name +
+                                   ": capture and output paths must be absolute, "
+                                   "without '.' or '..'");
+      }
+      const fs::path expected = manifest.output / m.capture.filename() / "material.json";
+      if (m.material != expected) {
+        throw FileError(where, item_name + ": material " + m.material.string() + " is not " +
+                                   expected.string() + " (<output>/<capture name>/material.json)");
+      }
+      if (IsWithin(manifest.output, m.capture)) {
+        throw FileError(where, item_name + ": the output " + manifest.output.string() +
+                                   " lies inside the capture " + m.capture.string());
       }
       manifest.items.push_back(m);
     }

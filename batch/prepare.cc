@@ -12,8 +12,11 @@ void PrepareOptions::Validate() const {
   batch.Validate();
   sbatch.Validate();
   // #SBATCH lines are not shell words (no quoting) and '%' starts an --output pattern.
-  CheckOption(!job_dir.empty() && job_dir.string().find_first_of(" \t\n%") == std::string::npos,
-              "PrepareOptions.job_dir", job_dir, "a path without spaces or '%'");
+  // Checked as the absolute path the script names: a relative one inherits the current
+  // directory's name.
+  const std::string absolute = job_dir.empty() ? "" : fs::absolute(job_dir).string();
+  CheckOption(!absolute.empty() && absolute.find_first_of(" \t\n%") == std::string::npos,
+              "PrepareOptions.job_dir", absolute, "a path without spaces or '%'");
 }
 
 Manifest PrepareJob(const PrepareOptions& options, const reconstruct::ProgressCallback& progress) {
@@ -25,8 +28,8 @@ Manifest PrepareJob(const PrepareOptions& options, const reconstruct::ProgressCa
                     "choose a new job directory");
   }
   const Manifest manifest = MakeManifest(options.batch, progress);
-  fs::create_directories(dir.results());
-  fs::create_directories(dir.logs());
+  CreateDirectories(dir.results());
+  CreateDirectories(dir.logs());
   if (!manifest.items.empty()) {
     WriteFileAtomically(dir.script(),
                         SbatchScript(options.sbatch, dir, static_cast<int>(manifest.items.size())));

@@ -9,6 +9,7 @@
 #include "batch/manifest.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::batch {
 
@@ -66,7 +67,10 @@ TaskResult RunTask(const JobDir& dir, int index, const reconstruct::ProgressCall
   const std::string array_job = Environment("SLURM_ARRAY_JOB_ID");
   if (!array_job.empty()) result.job = array_job + "_" + Environment("SLURM_ARRAY_TASK_ID");
   result.host = HostName();
-  fs::create_directories(dir.results());
+  if (fs::is_symlink(dir.results())) {  // followed, the task would write anywhere
+    throw FileError(dir.results().string(), "a symbolic link: a task writes only in its job dir");
+  }
+  CreateDirectories(dir.results());
   // An earlier attempt's result would speak for this one if this one were killed.
   fs::remove(dir.result(index));
   reconstruct::BatchOptions options = manifest.options;
@@ -98,7 +102,7 @@ std::string SerializeTaskResult(const TaskResult& result) {
 
 TaskResult ReadTaskResult(const fs::path& file) {
   try {
-    const json root = json::parse(ReadFileToString(file));
+    const json root = ParseJson(ReadFileToString(file), file.string());
     TaskResult result;
     result.index = root.at("index").get<int>();
     result.item.input = root.at("capture").get<std::string>();

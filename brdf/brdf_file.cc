@@ -7,6 +7,7 @@
 #include "brdf/nbrdf.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::brdf {
 
@@ -15,7 +16,7 @@ std::shared_ptr<const Brdf> LoadBrdfFile(const std::filesystem::path& path) {
   if (ext == ".json") {
     // Both brdfrig models and measured nbrdf fits are JSON; the "format" field tells them apart.
     const std::string text = ReadFileToString(path);
-    const nlohmann::json doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    const nlohmann::json doc = ParseJson(text, path.string());
     if (doc.is_object() && doc.contains("format") && doc["format"] == "nbrdf-mlp") {
       return std::make_shared<NeuralBrdf>(NeuralBrdf::Parse(text, path.string()));
     }

@@ -9,6 +9,7 @@
 #include "common/atomic_file.h"
 #include "common/base64.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::brdf {
 namespace {
@@ -293,12 +294,7 @@ SliceModel Material::Slices() const {
 
 Material ParseMaterial(const std::string& json_text, const std::string& source_name) {
   const Reader r(source_name);
-  json doc;
-  try {
-    doc = json::parse(json_text);
-  } catch (const json::exception& e) {  // syntax, or a number out of range (1e400)
-    r.Fail("", std::string("not valid JSON (") + e.what() + ")");
-  }
+  const json doc = ParseJson(json_text, source_name);
   const json& format = r.Field(doc, "", "format");
   const json& version = r.Field(doc, "", "version");
   Material material;

@@ -7,6 +7,7 @@
 #include "brdf/json_reader.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::brdf {
 namespace {
@@ -70,12 +71,7 @@ void Frame(const Vec3& n, Vec3* t, Vec3* b) {
 
 NeuralBrdf NeuralBrdf::Parse(const std::string& json_text, const std::string& source_name) {
   const Reader r(source_name);
-  json doc;
-  try {
-    doc = json::parse(json_text);
-  } catch (const json::exception& e) {  // syntax, or a number out of range
-    r.Fail("", std::string("not valid JSON (") + e.what() + ")");
-  }
+  const json doc = ParseJson(json_text, source_name);
   const json& format = r.Field(doc, "", "format");
   if (format != kFormat) {
     r.Fail("format", std::string("expected \"") + kFormat + "\", got " + format.dump());

@@ -6,8 +6,10 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "common/error.h"
@@ -16,7 +18,7 @@ namespace brdfrig {
 namespace {
 
 [[noreturn]] void ThrowSystem(const std::string& what, const std::filesystem::path& path, int err) {
-  throw Error(what + " '" + path.string() + "': " + std::strerror(err));
+  throw OutputError(what + " '" + path.string() + "': " + std::strerror(err));
 }
 
 }  // namespace
@@ -31,9 +33,21 @@ void SyncDirectory(const std::filesystem::path& dir) {
   if (rc != 0) ThrowSystem("cannot sync directory", target, err);
 }
 
-void WriteFileAndSync(const std::filesystem::path& path, std::span<const std::byte> bytes) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) ThrowSystem("cannot create", path, errno);
+std::filesystem::path WriteTemporaryAndSync(const std::filesystem::path& target,
+                                            std::span<const std::byte> bytes) {
+  // A fresh name each try, created only if nothing (not even a dangling symlink) is there.
+  std::random_device random;
+  std::filesystem::path path;
+  int fd = -1;
+  for (int attempt = 0; fd < 0; ++attempt) {
+    char suffix[32];
+    std::snprintf(suffix, sizeof suffix, ".tmp-%d-%08x", static_cast<int>(::getpid()),
+                  static_cast<unsigned>(random()));
+    path = target;
+    path += suffix;
+    fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0 && (errno != EEXIST || attempt >= 100)) ThrowSystem("cannot create", path, errno);
+  }
   std::size_t written = 0;
   while (written < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
@@ -51,6 +65,7 @@ void WriteFileAndSync(const std::filesystem::path& path, std::span<const std::by
     ::unlink(path.c_str());
     ThrowSystem("cannot flush", path, err);
   }
+  return path;
 }
 
 void RenameAndSync(const std::filesystem::path& from, const std::filesystem::path& to) {
@@ -62,11 +77,16 @@ void RenameAndSync(const std::filesystem::path& from, const std::filesystem::pat
   SyncDirectory(to.parent_path());
 }
 
+void CreateDirectories(const std::filesystem::path& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) {
+    throw OutputError("cannot create directory '" + dir.string() + "': " + error.message());
+  }
+}
+
 void WriteFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid());
-  WriteFileAndSync(tmp, bytes);
-  RenameAndSync(tmp, path);
+  RenameAndSync(WriteTemporaryAndSync(path, bytes), path);
 }
 
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view text) {

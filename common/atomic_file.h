@@ -1,6 +1,7 @@
 // Writing files so that a crash at any instant leaves either the old file or the complete new
 // one, never a torn file: write to a temporary name in the same directory, fsync, rename,
-// fsync the directory.
+// fsync the directory. The temporary is created exclusively under a fresh unique name, so a
+// file or symlink someone planted beside the target is never followed nor overwritten.
 #pragma once
 
 #include <cstddef>
@@ -11,14 +12,17 @@
 
 namespace brdfrig {
 
-// Throws brdfrig::Error naming the path and the system error (e.g. "No space left on device").
+// Throws brdfrig::OutputError naming the path and the system error (e.g. "No space left on
+// device"); so do the functions below that write.
 void WriteFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view text);
 
 // The two halves of WriteFileAtomically, for callers that act between them (e.g. record a
-// checkpoint): write `path` and fsync it (removed again on failure); rename `from` to `to` and
-// fsync the directory (`from` removed on failure).
-void WriteFileAndSync(const std::filesystem::path& path, std::span<const std::byte> bytes);
+// checkpoint): create a new temporary beside `target` ("NAME.tmp-PID-RANDOM", O_CREAT|O_EXCL|
+// O_NOFOLLOW), write `bytes`, fsync it and return its path (removed again on failure); rename
+// `from` to `to` and fsync the directory (`from` removed on failure).
+std::filesystem::path WriteTemporaryAndSync(const std::filesystem::path& target,
+                                            std::span<const std::byte> bytes);
 void RenameAndSync(const std::filesystem::path& from, const std::filesystem::path& to);
 
 // Inputs a user or client feeds are text files of modest size: the cap keeps a mistaken or
@@ -30,6 +34,10 @@ inline constexpr std::size_t kMaxInputFileBytes = std::size_t{64} << 20;  // 64 
 // or when the file is larger.
 std::string ReadFileToString(const std::filesystem::path& path,
                              std::size_t max_bytes = kMaxInputFileBytes);
+
+// std::filesystem::create_directories for an output: a component that is a file, or one that
+// cannot be made, is an OutputError naming `dir` (not a std::filesystem::filesystem_error).
+void CreateDirectories(const std::filesystem::path& dir);
 
 // fsync of a directory, so that a rename inside it is durable.
 void SyncDirectory(const std::filesystem::path& dir);

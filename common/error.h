@@ -30,6 +30,13 @@ class FileError : public Error {
   int column_ = 0;
 };
 
+// An output could not be written (a full disk, a file where a directory goes): an error of the
+// whole run, never a property of the data to skip past like a bad photo.
+class OutputError : public Error {
+ public:
+  using Error::Error;
+};
+
 // An options struct failed its Validate(): names the field and the rule it broke.
 class OptionsError : public Error {
  public:

@@ -77,7 +77,7 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
     if (options.progress) options.progress(m);
   };
   const fs::path out = options.output_dir;
-  fs::create_directories(out);
+  CreateDirectories(out);
   const sim::Scene scene = sim::LoadScene(options.scene);
 
   // 1. Capture through the acquisition engine with the simulated rig: the same plan, run

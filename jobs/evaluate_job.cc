@@ -51,7 +51,7 @@ EvaluateSummary RunEvaluate(const EvaluateOptions& options) {
     capture = reconstruct::LoadCapture(options.capture);
     (void)ValidationPositionsOf(*capture, photo_options);
   }
-  std::filesystem::create_directories(options.output_dir);
+  CreateDirectories(options.output_dir);
 
   std::string against;
   nlohmann::json figures_json = nlohmann::json::object();

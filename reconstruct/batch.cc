@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -131,6 +132,18 @@ std::vector<BatchItem> ListBatchItems(const BatchOptions& options) {
   const std::vector<fs::path> captures = ExpandInputs(options.inputs);
   const bool single = captures.size() == 1;
   const bool to_file = single && options.output.extension() == ".json";
+  // Several captures each get output/<capture name>: two of one name (archX/tile, archY/tile)
+  // would overwrite each other's material.
+  std::map<fs::path, fs::path> by_name;
+  for (const fs::path& capture : captures) {
+    const auto [it, added] = by_name.emplace(capture.filename(), capture);
+    if (!added) {
+      throw Error("captures " + it->second.string() + " and " + capture.string() +
+                  " have the same name, so both would be written to " +
+                  (options.output / capture.filename()).string() +
+                  ": reconstruct them into different outputs");
+    }
+  }
   std::vector<BatchItem> items(captures.size());
   for (std::size_t i = 0; i < captures.size(); ++i) {
     items[i].input = captures[i];
@@ -188,7 +201,7 @@ void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
       }
       ReconstructOptions reconstruct = options.reconstruct;
       reconstruct.hdr_dir = out_dir / "hdr";
-      fs::create_directories(out_dir);
+      CreateDirectories(out_dir);
       ReconstructionResult result = Reconstruct(capture, reconstruct, [&](const std::string& m) {
         if (progress) progress(name + ": " + m);
       });
@@ -206,6 +219,9 @@ void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
                           : "");
     }
   } catch (const Error& e) {
+    item.status = BatchItem::Status::kFailed;
+    item.message = e.what();
+  } catch (const fs::filesystem_error& e) {  // one capture's paths never stop the others
     item.status = BatchItem::Status::kFailed;
     item.message = e.what();
   }

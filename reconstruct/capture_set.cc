@@ -5,6 +5,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 #include "common/yaml_reader.h"
 #include "reconstruct/raw_photo.h"
 #include "session/session_reader.h"
@@ -18,12 +19,7 @@ CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir) {
   if (!std::filesystem::exists(manifest)) {
     throw FileError(manifest.string(), "no capture.json: not a brdfrig simulate output directory");
   }
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(ReadFileToString(manifest));
-  } catch (const nlohmann::json::exception& e) {
-    throw FileError(manifest.string(), std::string("malformed JSON: ") + e.what());
-  }
+  const nlohmann::json doc = ParseJson(ReadFileToString(manifest), manifest.string());
   CaptureSet set;
   set.name = dir.string();
   try {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/format.h"
 #include "common/sha256.h"
@@ -86,7 +87,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   ReconstructionResult result;
   result.warnings = capture.warnings;
   for (const std::string& w : capture.warnings) say("warning: " + w);
-  if (!options.hdr_dir.empty()) std::filesystem::create_directories(options.hdr_dir);
+  if (!options.hdr_dir.empty()) CreateDirectories(options.hdr_dir);
 
   // Stage 1: measure every position. Validation positions (the plan's, or named in the
   // options) are measured to score the ladder's rungs, never fitted.
@@ -120,6 +121,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
                               data.report.warnings};
       (validation ? validation_positions : fit_positions).push_back(std::move(samples));
       result.positions.push_back(std::move(data.report));
+    } catch (const OutputError&) {
+      throw;  // a debug file that cannot be written fails the run, never drops the position
     } catch (const Error& e) {
       PositionReport report;
       report.index = position.index;

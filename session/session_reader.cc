@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/error.h"
+#include "common/json_parse.h"
 #include "common/yaml_reader.h"
 #include "session/catalog_checks.h"
 #include "session/rig_snapshot.h"
@@ -21,12 +22,16 @@ namespace fs = std::filesystem;
 template <typename Convert>
 auto FromJsonCell(const fs::path& catalog, const std::string& cell, const std::string& text,
                   Convert convert) {
+  std::string problem;
   try {
-    return convert(nlohmann::json::parse(text));
+    return convert(ParseJson(text, cell));
   } catch (const nlohmann::json::exception& e) {
-    throw FileError(catalog.string(), cell + " holds '" + text.substr(0, 80) +
-                                          "', not what this version writes (" + e.what() + ")");
+    problem = e.what();
+  } catch (const FileError& e) {  // not JSON, or nested too deep
+    problem = e.what();
   }
+  throw FileError(catalog.string(), cell + " holds '" + text.substr(0, 80) +
+                                        "', not what this version writes (" + problem + ")");
 }
 
 // {"axis": radians, ...}; anything else throws a json type_error.

@@ -167,8 +167,8 @@ TEST_F(DaemonTest, CompleteSessionsAreHandedToTheConfiguredCommandAbortedOnesAre
   // The finished first session's progress stays in the status until "long" starts, so the
   // wait names the session: aborting before it runs would answer 409.
   WaitForStatus([](const json& s) {
-    return s["session"] == "long" && s.contains("progress") &&
-           s["progress"]["state"] != "done" && s["progress"]["frames_recorded"].get<int>() >= 2;
+    return s["session"] == "long" && s.contains("progress") && s["progress"]["state"] != "done" &&
+           s["progress"]["frames_recorded"].get<int>() >= 2;
   });
   client.Abort("test abort");
   daemon.WaitIdle();
@@ -211,7 +211,10 @@ TEST_F(DaemonTest, MalformedRequestsGetA4xxWithAReasonAndWriteNothing) {
     EXPECT_NE(reply.body["error"].get<std::string>().find(reason_part), std::string::npos)
         << reply.body.dump();
   };
-  expect("POST", "/v1/sessions", "{not json", 400, "not JSON");
+  expect("POST", "/v1/sessions", "{not json", 400, "request body: not valid JSON");
+  // Issue 25, finding 5: nesting is bounded like every JSON reader's.
+  expect("POST", "/v1/sessions", std::string(200000, '[') + std::string(200000, ']'), 400,
+         "request body: arrays and objects nested more than 64 deep");
   expect("POST", "/v1/sessions", R"({"name": "x"})", 400, "expected");
   expect("POST", "/v1/sessions", R"({"name": 3, "plan": "p"})", 400, "expected");
   expect("POST", "/v1/sessions", json{{"name", "x"}, {"plan", "p"}, {"path", "/"}}.dump(), 400,
@@ -237,7 +240,8 @@ TEST_F(DaemonTest, MalformedRequestsGetA4xxWithAReasonAndWriteNothing) {
          400, "count must be between 1 and 1000");
   // Found by fuzz_daemon_request: the parser's message quotes the invalid UTF-8 byte, which
   // made the error answer itself throw (500 instead of 400).
-  expect("POST", "/v1/sessions", "{\"name\": \"x\", \"plan\": \"count: \xb2\"}", 400, "not JSON");
+  expect("POST", "/v1/sessions", "{\"name\": \"x\", \"plan\": \"count: \xb2\"}", 400,
+         "not valid JSON");
   expect("GET", "/v1/nowhere", "", 404, "no such endpoint");
   expect("GET", "/v1/pause", "", 405, "POST");
   expect("POST", "/v1/pause", "", 409, "no session is running");

@@ -119,5 +119,108 @@ TEST_F(JobTest, CollectSaysWhyItemsFailedAndResubmitsOnlyFailedAndResultlessOnes
   EXPECT_EQ(report.ToResubmit(), (std::vector<int>{0}));
 }
 
+// Issue 25, finding 2: two archives' captures of one name were mapped to one material path.
+TEST_F(JobTest, TwoCapturesOfOneNameAreRefusedBeforeAnyWork) {
+  fs::create_directories(root_ / "other");
+  fs::copy(root_ / "archive" / "a", root_ / "other" / "a", fs::copy_options::recursive);
+  PrepareOptions prepare;
+  prepare.batch = Options(root_ / "fits");
+  prepare.batch.inputs.push_back(root_ / "other");
+  prepare.sbatch.brdfrig = "/usr/local/bin/brdfrig";
+  prepare.job_dir = root_ / "job";
+  try {
+    (void)PrepareJob(prepare);
+    FAIL() << "archive/a and other/a were both prepared";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((root_ / "other" / "a").string()), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(root_ / "job" / "manifest.json"));
+}
+
+// Issue 25, finding 4: a manifest item's material edited to an absolute path elsewhere made the
+// task overwrite that file, and results/ replaced by a symlink was followed. Every path taken
+// from the job directory stays inside its output and job directories, or the task refuses.
+TEST_F(JobTest, ATamperedJobDirectoryCannotMakeATaskWriteOutsideIt) {
+  PrepareOptions prepare;
+  prepare.batch = Options(root_ / "fits");
+  prepare.sbatch.brdfrig = "/usr/local/bin/brdfrig";
+  prepare.job_dir = root_ / "job";
+  const Manifest manifest = PrepareJob(prepare);
+  ASSERT_EQ(manifest.items.size(), 2u);
+  const JobDir dir(root_ / "job");
+  const std::string original = ReadFileToString(dir.manifest());
+  const auto tamper = [&](const fs::path& from, const fs::path& to) {  // every occurrence
+    std::string text = original;
+    ASSERT_NE(text.find(from.string()), std::string::npos) << from << " in " << text;
+    for (std::size_t at = 0; (at = text.find(from.string(), at)) != std::string::npos;) {
+      text.replace(at, from.string().size(), to.string());
+      at += to.string().size();
+    }
+    WriteFileAtomically(dir.manifest(), text);
+  };
+  const auto refused = [&](int index) {
+    try {
+      (void)RunTask(dir, index);
+      ADD_FAILURE() << "item " << index << " ran from a tampered job directory";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(dir.root.string()), std::string::npos) << e.what();
+    }
+  };
+  tamper(root_ / "fits" / "a" / "material.json", root_ / "victim" / "material.json");
+  refused(0);
+  // The fits directory, consistently, inside capture b: item 0 would write into b's data.
+  tamper(root_ / "fits", root_ / "archive" / "b");
+  refused(0);
+  EXPECT_FALSE(fs::exists(root_ / "victim"));
+  EXPECT_FALSE(fs::exists(root_ / "archive" / "b" / "a"));
+
+  WriteFileAtomically(dir.manifest(), original);
+  fs::create_directories(root_ / "elsewhere");
+  fs::remove_all(dir.results());
+  fs::create_directory_symlink(root_ / "elsewhere", dir.results());
+  refused(1);
+  EXPECT_TRUE(fs::is_empty(root_ / "elsewhere"));
+}
+
+// Finding 4: a relative --job-dir run from a directory whose name has a space passed the check
+// and wrote a broken #SBATCH --chdir line.
+TEST_F(JobTest, ARelativeJobDirIsCheckedAsTheAbsolutePathItNames) {
+  const fs::path spaced = root_ / "with space";
+  fs::create_directories(spaced);
+  const fs::path before = fs::current_path();
+  fs::current_path(spaced);
+  PrepareOptions prepare;
+  prepare.batch = Options(root_ / "fits");
+  prepare.sbatch.brdfrig = "/usr/local/bin/brdfrig";
+  prepare.job_dir = "job";
+  EXPECT_THROW(prepare.Validate(), OptionsError);
+  fs::current_path(before);
+}
+
+// Issue 25, finding 5: a results/<i>.json nested 200,000 arrays deep crashed collect (the
+// reader copied the value); now a FileError naming the file, like any malformed result.
+TEST(TaskResultTest, TooDeepResultIsAFileErrorNamingTheFile) {
+  const fs::path file = fs::temp_directory_path() / "batch_deep_result.json";
+  TaskResult result;
+  result.index = 0;
+  result.item.status = reconstruct::BatchItem::Status::kDone;
+  std::string text = SerializeTaskResult(result);
+  const std::string empty = "\"degraded\": []";
+  const std::size_t degraded = text.find(empty);
+  ASSERT_NE(degraded, std::string::npos) << text;
+  text.replace(degraded, empty.size(),
+               "\"degraded\": " + std::string(200000, '[') + std::string(200000, ']'));
+  WriteFileAtomically(file, text);
+  try {
+    (void)ReadTaskResult(file);
+    FAIL() << "a 200,000 deep result was read";
+  } catch (const FileError& e) {
+    EXPECT_EQ(e.file(), file.string());
+    EXPECT_NE(std::string(e.what()).find("nested more than 64 deep"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace brdfrig::batch

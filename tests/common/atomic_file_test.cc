@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <span>
 
 #include "common/error.h"
 #include "common/parallel.h"
@@ -36,6 +39,37 @@ TEST(AtomicFileTest, UnwritableDirectoryGivesErrorNamingThePath) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent_dir/x.txt"), std::string::npos);
   }
+}
+
+// Issue 25, finding 3: the temporary was "<out>.tmp-<pid>", opened with O_CREAT|O_TRUNC, so a
+// symlink planted at that name made the write overwrite its target and left the output a link.
+TEST(AtomicFileTest, PlantedSymlinkAtTheTemporaryNameIsNeitherFollowedNorOverwritten) {
+  const fs::path dir = FreshDir("atomic_symlink");
+  const fs::path victim = dir / "victim";
+  WriteFileAtomically(victim, std::string_view("precious"));
+  const fs::path out = dir / "out.binary";
+  const fs::path planted = dir / ("out.binary.tmp-" + std::to_string(::getpid()));
+  fs::create_symlink(victim, planted);
+  WriteFileAtomically(out, std::string_view("new output"));
+  EXPECT_EQ(ReadFileToString(victim), "precious");
+  EXPECT_FALSE(fs::is_symlink(out));
+  EXPECT_EQ(ReadFileToString(out), "new output");
+  EXPECT_TRUE(fs::is_symlink(planted)) << "someone else's file is left alone";
+  fs::remove_all(dir);
+}
+
+TEST(AtomicFileTest, TemporariesAreFreshFilesBesideTheTarget) {
+  const fs::path dir = FreshDir("atomic_fresh");
+  const std::string_view bytes("x");
+  const fs::path a = WriteTemporaryAndSync(dir / "t.json", std::as_bytes(std::span(bytes)));
+  const fs::path b = WriteTemporaryAndSync(dir / "t.json", std::as_bytes(std::span(bytes)));
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a.parent_path(), dir);
+  EXPECT_NE(a.filename().string().find("t.json.tmp-"), std::string::npos) << a;
+  RenameAndSync(a, dir / "t.json");
+  EXPECT_EQ(ReadFileToString(dir / "t.json"), "x");
+  EXPECT_EQ(ReadFileToString(b), "x");
+  fs::remove_all(dir);
 }
 
 TEST(ParallelForTest, CoversEveryIndexExactlyOnce) {

@@ -86,5 +86,17 @@ TEST_F(CliTest, EvaluateComparesTheValidationPhotos) {
   EXPECT_NE(no_truth.output.find("--capture"), std::string::npos) << no_truth.output;
 }
 
+// Issue 25, finding 5: `demo -o FILE` ended in an internal error (an uncaught
+// std::filesystem::filesystem_error, exit 2); it is the user's error, naming the path.
+TEST(DemoCli, OutputThatIsAFileIsAnErrorNamingIt) {
+  const fs::path file = fs::temp_directory_path() / "brdfrig_demo_output_is_a_file";
+  WriteFileAtomically(file, std::string_view("not a directory"));
+  const auto result = RunBrdfrig("demo -o " + file.string());
+  EXPECT_EQ(result.status, 1) << result.output;
+  EXPECT_NE(result.output.find(file.string()), std::string::npos) << result.output;
+  EXPECT_EQ(result.output.find("internal error"), std::string::npos) << result.output;
+  EXPECT_EQ(ReadFileToString(file), "not a directory");
+}
+
 }  // namespace
 }  // namespace brdfrig
