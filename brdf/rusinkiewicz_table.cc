@@ -13,7 +13,7 @@ constexpr double kHalfPi = M_PI / 2;
 
 // Lower node and fraction of a continuous index u in [0, n − 1].
 void Split(double u, int n, int* i, double* t) {
-  u = std::clamp(u, 0.0, n - 1.0);
+  u = u > 0 ? std::min(u, n - 1.0) : 0.0;  // NaN (a degenerate direction) goes to node 0
   *i = std::min(static_cast<int>(u), n - 2);
   *t = u - *i;
 }

@@ -8,6 +8,7 @@
 #include "brdf/json_reader.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_parse.h"
 
 namespace brdfrig::prior {
 namespace {
@@ -113,12 +114,8 @@ MeasuredPrior ReadPrior(const std::filesystem::path& path) {
   }
   const std::size_t end = bytes.find('\0', std::strlen(kMagic));
   if (end == std::string::npos) throw FileError(source, "the header does not end");
-  nlohmann::json header;
-  try {
-    header = nlohmann::json::parse(bytes.substr(std::strlen(kMagic), end - std::strlen(kMagic)));
-  } catch (const nlohmann::json::exception& e) {
-    throw FileError(source, std::string("header: ") + e.what());
-  }
+  const nlohmann::json header =
+      ParseJson(bytes.substr(std::strlen(kMagic), end - std::strlen(kMagic)), source);
   const brdf::JsonReader reader(source);
   MeasuredPrior p;
   if (reader.String(header, "", "format") != "brdfrig-prior") {
