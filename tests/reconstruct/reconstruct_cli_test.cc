@@ -178,5 +178,29 @@ TEST(ReconstructCli, NonFinitePixelsAreInvalidAndReported) {
   EXPECT_FALSE(fs::exists(strict_out));
 }
 
+// Issue 25, finding 8: the options that change the material are part of the up-to-date key, so
+// a second run with another --model (or another fit option) refits; the same options skip.
+TEST(ReconstructCli, ChangedModelOrFitOptionRefitsInsteadOfUpToDate) {
+  const fs::path dir = fs::temp_directory_path() / "brdfrig_reconstruct_cli_options";
+  const brdf::Material truth = testing::FlatSliceTruth();
+  const CaptureSet capture = testing::SimulateCapture(dir, SmallScene(), &truth);
+  const fs::path photos = capture.positions[0].frames[0].file.parent_path();
+  const fs::path out = dir / "fit" / "material.json";
+  const std::string reconstruct = "reconstruct " + Q(photos) + " -o " + Q(out);
+  const auto ggx = RunBrdfrig(reconstruct + " --model ggx");
+  ASSERT_EQ(ggx.status, 0) << ggx.output;
+  EXPECT_EQ(ReadJson(out)["kind"], "ggx");
+  const auto beckmann = RunBrdfrig(reconstruct + " --model beckmann");
+  ASSERT_EQ(beckmann.status, 0) << beckmann.output;
+  EXPECT_EQ(beckmann.output.find("up to date"), std::string::npos) << beckmann.output;
+  EXPECT_EQ(ReadJson(out)["kind"], "beckmann");
+  const auto again = RunBrdfrig(reconstruct + " --model beckmann");
+  EXPECT_NE(again.output.find("up to date"), std::string::npos) << again.output;
+  const auto binned = RunBrdfrig(reconstruct + " --model beckmann --bin-width-deg 0.05");
+  ASSERT_EQ(binned.status, 0) << binned.output;
+  EXPECT_EQ(binned.output.find("up to date"), std::string::npos) << binned.output;
+  EXPECT_EQ(ReadJson(out)["provenance"]["options"]["model"], "beckmann");
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct
