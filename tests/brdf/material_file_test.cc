@@ -212,5 +212,13 @@ TEST(MaterialFileTest, RefusesWhatTheRendererRefuses) {
   EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("slices: at most 64 slices, got 65"));
 }
 
+// Issue 25, finding 11: a count beyond int was truncated silently.
+TEST(MaterialFileTest, SampleCountBeyondIntIsRefused) {
+  std::string text = SerializeMaterial(Example());
+  const std::size_t at = text.find("\"sample_count\": ") + 16;
+  text.replace(at, text.find_first_of(",\n}", at) - at, "99999999999");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("sample_count: expected a non-negative integer of at most"));
+}
+
 }  // namespace
 }  // namespace brdfrig::brdf
