@@ -44,9 +44,10 @@ int TaskIndexFromEnvironment() {
         "SLURM_ARRAY_TASK_ID is not set: not inside a Slurm job array (give --index to run "
         "one item by hand)");
   }
-  char* end = nullptr;
-  const long index = std::strtol(id.c_str(), &end, 10);
-  if (*end != '\0' || index < 0 || index > 1'000'000'000) {
+  // Digits only: strtol alone would take " 3" and "+3", which Slurm never sets.
+  const bool digits = id.size() <= 10 && id.find_first_not_of("0123456789") == std::string::npos;
+  const long index = digits ? std::strtol(id.c_str(), nullptr, 10) : -1;
+  if (index < 0 || index > 1'000'000'000) {
     throw Error("SLURM_ARRAY_TASK_ID = \"" + id + "\" is not an item index");
   }
   return static_cast<int>(index);

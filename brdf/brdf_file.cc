@@ -31,7 +31,15 @@ void ExportMerlFile(const std::filesystem::path& material, const std::filesystem
   if (output.extension() != ".binary") {
     throw FileError(output.string(), "a MERL table's file name must end in .binary");
   }
-  MerlTable::Tabulate(*LoadBrdfFile(material)).Write(output);
+  const MerlTable table = MerlTable::Tabulate(*LoadBrdfFile(material));
+  // A model finite in double can overflow the table's scale (A1 = 1e308 times 1500).
+  if (const std::size_t bad = table.NonFiniteCount(); bad > 0) {
+    throw FileError(material.string(), "its MERL table would hold " + std::to_string(bad) +
+                                           " infinite or NaN values (the model's values are too "
+                                           "large); nothing written to " +
+                                           output.string());
+  }
+  table.Write(output);
 }
 
 }  // namespace brdfrig::brdf

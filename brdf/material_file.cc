@@ -1,8 +1,8 @@
 #include "brdf/material_file.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "brdf/json_reader.h"
@@ -39,8 +39,10 @@ SliceDiagnostics ParseDiagnostics(const Reader& r, const json& d, const std::str
   SliceDiagnostics out;
   out.residual = r.Number(d, path, "residual");
   const json& count = r.Field(d, path, "sample_count");
-  if (!count.is_number_integer() || count.get<long long>() < 0) {
-    r.Fail(Reader::Join(path, "sample_count"), "expected a non-negative integer");
+  if (!count.is_number_integer() || count.get<long long>() < 0 ||
+      count.get<long long>() > std::numeric_limits<int>::max()) {
+    r.Fail(Reader::Join(path, "sample_count"), "expected a non-negative integer of at most " +
+                                                   std::to_string(std::numeric_limits<int>::max()));
   }
   out.sample_count = count.get<int>();
   const json& range = r.Field(d, path, "theta_range");
@@ -179,8 +181,8 @@ json SerializeTable(const RusinkiewiczGrid& grid, const TableValues& q) {
   for (int c = 0; c < 3; ++c) {
     std::vector<std::uint8_t> bytes(2 * q[c].size());
     for (std::size_t i = 0; i < q[c].size(); ++i) {
-      const auto u = static_cast<std::uint16_t>(std::lround(std::clamp((q[c][i] - lo) / scale,
-                                                                       0.0, 65535.0)));
+      const auto u =
+          static_cast<std::uint16_t>(std::lround(std::clamp((q[c][i] - lo) / scale, 0.0, 65535.0)));
       bytes[2 * i] = static_cast<std::uint8_t>(u & 0xff);
       bytes[2 * i + 1] = static_cast<std::uint8_t>(u >> 8);
     }

@@ -108,7 +108,15 @@ MerlTable MerlTable::Tabulate(const Brdf& source) {
   return table;
 }
 
+std::size_t MerlTable::NonFiniteCount() const {
+  return std::count_if(data_.begin(), data_.end(), [](double v) { return !std::isfinite(v); });
+}
+
 void MerlTable::Write(const std::filesystem::path& path) const {
+  if (const std::size_t bad = NonFiniteCount(); bad > 0) {
+    throw FileError(path.string(), "not written: " + std::to_string(bad) +
+                                       " of the table's values are infinite or NaN");
+  }
   std::vector<std::byte> bytes(kFileBytes);
   const std::int32_t dims[3] = {kMerlThetaH, kMerlThetaD, kMerlPhiD};
   std::memcpy(bytes.data(), dims, sizeof(dims));

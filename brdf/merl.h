@@ -21,8 +21,11 @@ class MerlTable : public Brdf {
   // Samples `source` at the centre of every bin.
   static MerlTable Tabulate(const Brdf& source);
 
-  // Writes the .binary format (atomically).
+  // Writes the .binary format (atomically). Throws FileError, writing nothing, when a value is
+  // infinite or NaN (a table no reader accepts).
   void Write(const std::filesystem::path& path) const;
+  // How many stored values are infinite or NaN.
+  std::size_t NonFiniteCount() const;
 
   // Nearest-bin lookup with the reference indexing. Bins holding negative values ("no data")
   // evaluate to 0.

@@ -47,6 +47,10 @@ void MicrofacetModelParams::Validate() const {
   CheckUnitColour(diffuse, "diffuse");
   CheckUnitColour(f0, "f0");
   CheckRoughness(alpha, "alpha");
+  if (fresnel_knots.size() > static_cast<std::size_t>(kMaxFresnelKnots)) {
+    Invalid("fresnel_knots.size", "must be <= " + std::to_string(kMaxFresnelKnots),
+            static_cast<double>(fresnel_knots.size()));
+  }
   for (std::size_t k = 0; k < fresnel_knots.size(); ++k) {
     if (!(std::abs(fresnel_knots[k]) <= 20)) {
       Invalid("fresnel_knots[" + std::to_string(k) + "]", "must be finite and within ±20",
@@ -57,8 +61,9 @@ void MicrofacetModelParams::Validate() const {
     if (!log_d.empty()) Invalid("log_d.size", "must be 0 for an analytic distribution", 0);
     return;
   }
-  if (log_d.size() < 2 || log_d.size() > 256) {
-    Invalid("log_d.size", "must be in [2, 256]", static_cast<double>(log_d.size()));
+  if (log_d.size() < 2 || log_d.size() > static_cast<std::size_t>(kMaxTableKnots)) {
+    Invalid("log_d.size", "must be in [2, " + std::to_string(kMaxTableKnots) + "]",
+            static_cast<double>(log_d.size()));
   }
   for (std::size_t k = 0; k < log_d.size(); ++k) {
     const std::string field = "log_d[" + std::to_string(k) + "]";

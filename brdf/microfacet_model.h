@@ -22,6 +22,11 @@ namespace brdfrig::brdf {
 
 enum class Distribution { kGgx, kBeckmann, kTable };
 
+// The most table and Fresnel correction knots a model may have: what the renderer holds
+// (render/gpu_material.h), so a file the reader accepts is one every writer can draw.
+inline constexpr int kMaxTableKnots = 256;
+inline constexpr int kMaxFresnelKnots = 64;
+
 const char* DistributionName(Distribution d);  // "ggx", "beckmann", "microfacet"
 
 struct MicrofacetModelParams {

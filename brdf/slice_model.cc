@@ -29,16 +29,23 @@ double AngleBetween(const Vec3& a, const Vec3& b) {
 
 void ValidateSlices(const std::vector<Slice>& slices) {
   if (slices.empty()) throw Error("slices: a model needs at least one slice");
+  if (slices.size() > static_cast<std::size_t>(kMaxSlices)) {
+    throw Error("slices: at most " + std::to_string(kMaxSlices) + " slices, got " +
+                std::to_string(slices.size()));
+  }
   for (std::size_t i = 0; i < slices.size(); ++i) {
     const Slice& s = slices[i];
     if (!std::isfinite(s.theta_in)) Invalid(i, "theta_in", "must be finite", s.theta_in);
     if (s.theta_in < 0 || s.theta_in > M_PI / 2) {
       Invalid(i, "theta_in", "must be in [0, pi/2]", s.theta_in);
     }
-    if (i > 0 && !(s.theta_in > slices[i - 1].theta_in)) {
+    if (i > 0 && !(s.theta_in >= slices[i - 1].theta_in + kMinKnotSpacing)) {
+      std::ostringstream previous;
+      previous.precision(17);
+      previous << slices[i - 1].theta_in;
       Invalid(i, "theta_in",
-              "must be greater than the previous slice's theta_in (" +
-                  std::to_string(slices[i - 1].theta_in) + ")",
+              "must be greater than the previous slice's theta_in (" + previous.str() +
+                  ") by at least " + std::to_string(kMinKnotSpacing),
               s.theta_in);
     }
     for (int c = 0; c < 3; ++c) {

@@ -45,10 +45,17 @@ double EvalLobe(const LobeParams& p, double theta);
 
 enum class Interpolation { kSpline, kLinear };
 
+// The most slices a model may have, what the renderer holds (render/gpu_material.h), and the
+// least spacing of their theta_in knots: float (the GPU's spline) must tell them apart, and the
+// seed fit pools positions closer than 0.1° into one slice anyway.
+inline constexpr int kMaxSlices = 64;
+inline constexpr double kMinKnotSpacing = 1e-4;  // radians
+
 class SliceModel : public Brdf {
  public:
   // Validates (throws brdfrig::Error naming the slice and field): at least one slice, all
-  // values finite, a1 >= a2 >= 0, h > 0, theta_in in [0, pi/2], knots strictly increasing.
+  // values finite, a1 >= a2 >= 0, h > 0, theta_in in [0, pi/2], knots increasing by at least
+  // kMinKnotSpacing, at most kMaxSlices slices.
   explicit SliceModel(std::vector<Slice> slices);
 
   Rgb Eval(const Vec3& l, const Vec3& v, const Vec3& n) const override;

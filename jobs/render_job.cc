@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "brdf/brdf_file.h"
@@ -29,6 +30,30 @@ render::View OrbitView(int width, int height) {
   view.intrinsics = {width, height, 1.2 * height, 1.2 * height, width / 2.0, height / 2.0};
   view.pose = geometry::LookAt({0.15, -0.25, 0.2}, geometry::Vec3::Zero(), geometry::Vec3::UnitZ());
   return view;
+}
+
+// A material the CPU evaluates finitely can overflow float on the GPU (A1 = 4e38): such an
+// image, and a black one of a material that is not black, is an error, never a picture.
+void CheckRendered(const cv::Mat& radiance, const brdf::Brdf& material,
+                   const RenderJobOptions& options) {
+  const cv::Mat values = radiance.reshape(1);
+  int non_finite = 0;
+  for (int r = 0; r < values.rows; ++r) {
+    const float* row = values.ptr<float>(r);
+    for (int c = 0; c < values.cols; ++c) non_finite += !std::isfinite(row[c]);
+  }
+  const std::string nothing = "; nothing written to " + options.output.string();
+  if (non_finite > 0) {
+    throw FileError(options.material.string(),
+                    "the renderer computed " + std::to_string(non_finite) +
+                        " infinite or NaN values (the material's values exceed float range)" +
+                        nothing);
+  }
+  const brdf::Vec3 n = brdf::Vec3::UnitZ();
+  if (cv::countNonZero(values) == 0 && (material.Eval(n, n, n) > 0).any()) {
+    throw FileError(options.material.string(),
+                    "the rendered image is black although the material is not" + nothing);
+  }
 }
 
 }  // namespace
@@ -82,6 +107,7 @@ RenderJobSummary RunRenderJob(const RenderJobOptions& options) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   summary.width = radiance.cols;
   summary.height = radiance.rows;
+  CheckRendered(radiance, *material, options);
   evaluate::WriteImageFile(options.output, radiance);
   return summary;
 }

@@ -60,8 +60,10 @@ Existing ExistingMaterial(const fs::path& material_file) {
   if (!fs::exists(material_file)) return {};
   try {
     const brdf::Material m = brdf::ReadMaterialFile(material_file);
-    Existing existing{
-        m.provenance.value("input_sha256", "") + "/" + m.provenance.value("software", ""), {}};
+    Existing existing{m.provenance.value("input_sha256", "") + "/" +
+                          m.provenance.value("software", "") + "/" +
+                          m.provenance.value("options", nlohmann::json()).dump(),
+                      {}};
     for (const auto& p : m.provenance.value("positions", nlohmann::json::array())) {
       const std::string name = "p" + std::to_string(p.value("index", -1)) + ": ";
       if (!p.value("used", true)) {
@@ -159,6 +161,11 @@ namespace {
 
 std::string SoftwareName() { return std::string("brdfrig ") + BRDFRIG_VERSION; }
 
+// What an up-to-date material's provenance says: the same photos, software and options.
+std::string UpToDateKey(const std::string& fingerprint, const ReconstructOptions& options) {
+  return fingerprint + "/" + SoftwareName() + "/" + options.ResultKey().dump();
+}
+
 }  // namespace
 
 bool NeedsReconstruct(const BatchItem& item, const BatchOptions& options) {
@@ -166,7 +173,7 @@ bool NeedsReconstruct(const BatchItem& item, const BatchOptions& options) {
   try {
     const std::string fingerprint = CaptureFingerprint(LoadCapture(item.input));
     const Existing existing = ExistingMaterial(item.material_file);
-    if (existing.fingerprint != fingerprint + "/" + SoftwareName()) return true;
+    if (existing.fingerprint != UpToDateKey(fingerprint, options.reconstruct)) return true;
     // Under --strict an earlier partial material is a failure to report, not a skip.
     return options.reconstruct.strict && (!existing.dropped.empty() || !existing.degraded.empty());
   } catch (const Error&) {
@@ -182,7 +189,7 @@ void ProcessBatchItem(const BatchOptions& options, BatchItem& item,
     const CaptureSet capture = LoadCapture(item.input);
     const std::string fingerprint = CaptureFingerprint(capture);
     const Existing existing = ExistingMaterial(item.material_file);
-    if (!options.force && existing.fingerprint == fingerprint + "/" + SoftwareName()) {
+    if (!options.force && existing.fingerprint == UpToDateKey(fingerprint, options.reconstruct)) {
       if (options.reconstruct.strict && (!existing.dropped.empty() || !existing.degraded.empty())) {
         throw Error("the material of an earlier run lacks " +
                     std::to_string(existing.dropped.size()) + " position(s) and has " +

@@ -1,6 +1,7 @@
 // Offline reprocessing: `brdfrig reconstruct` over one capture or many (a directory of
 // captures), in parallel, skipping captures whose material.json is up to date (same software
-// version and same photo contents, by SHA-256), never writing into a capture's own directory.
+// version, same photo contents by SHA-256, and the same options that change the result:
+// ReconstructOptions::ResultKey), never writing into a capture's own directory.
 #pragma once
 
 #include <filesystem>
@@ -59,7 +60,8 @@ std::string CaptureFingerprint(const CaptureSet& capture);
 std::vector<BatchItem> ListBatchItems(const BatchOptions& options);
 
 // Whether ProcessBatchItem would reconstruct `item` (false: its material is up to date — same
-// software, same photos — and, under strict, complete). Hashes the capture's photos.
+// software, same photos, same ResultKey of the options — and, under strict, complete). Hashes the
+// capture's photos.
 bool NeedsReconstruct(const BatchItem& item, const BatchOptions& options);
 
 // One item of a batch: skipped when up to date, else reconstructed into

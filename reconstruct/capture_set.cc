@@ -23,11 +23,9 @@ CaptureSet LoadSimulatedCapture(const std::filesystem::path& dir) {
   CaptureSet set;
   set.name = dir.string();
   try {
+    // A relative scene lies beside capture.json, wherever the reader runs from.
     std::filesystem::path scene = doc.at("scene").get<std::string>();
-    // The error_code form: a name the file system cannot look up is not found, and the reader
-    // below reports it with the file's name (not an exception from <filesystem>).
-    std::error_code error;
-    if (scene.is_relative() && !std::filesystem::exists(scene, error)) scene = photos / scene;
+    if (scene.is_relative()) scene = photos / scene;
     // Only the scene's rig section is read: the nominal geometry, never the truth.
     const YamlNode root = LoadYamlFile(scene.string());
     set.nominal = geometry::ParseRigGeometry(root.Required("rig"));

@@ -78,6 +78,40 @@ void ReconstructOptions::Validate() const {
   if (!model.empty()) (void)brdf::ParseModelKind(model);
 }
 
+nlohmann::json ReconstructOptions::ResultKey() const {
+  const MicrofacetFitOptions& m = microfacet;
+  return {{"model", model},
+          {"validate", validate},
+          {"use_positions", use_positions},
+          {"validation_positions", validation_positions},
+          {"hdr", {hdr.saturation, hdr.black, hdr.read_floor}},
+          {"target",
+           {target.search_band, target.corner_skip, target.profile_step_px, target.min_log_step,
+            target.min_edge_fraction, target.use_paper_outline, target.lines_per_edge,
+            target.max_reprojection_px, target.warn_camera_offset_m}},
+          {"light",
+           {light.smoothing_px, light.min_peak_ratio, light.edge_inset,
+            light.max_nominal_disagreement_deg}},
+          {"light_refine",
+           {light_refine.enabled, light_refine.max_pixels, light_refine.max_iterations,
+            light_refine.max_shift_rad}},
+          {"radiometry",
+           {radiometry.margin, radiometry.stride, radiometry.warn_spread, radiometry.flat_field}},
+          {"samples", {samples.edge_margin, samples.bin_width}},
+          {"fit",
+           {fit.max_iterations, fit.function_tolerance, fit.parameter_tolerance, fit.loss_scale,
+            fit.covariance}},
+          {"directions",
+           {directions.max_block_px, directions.min_theta_h_span, directions.relative_theta_h_span,
+            directions.max_theta_d_span}},
+          {"microfacet",
+           {m.table_knots, m.fresnel_knots, m.fresnel_prior, m.smoothness, m.epsilon_fraction,
+            m.loss_scale, m.max_iterations, m.covariance, m.energy_check}},
+          {"prior",
+           {prior.prior == nullptr ? std::string("shipped") : "custom " + prior.prior->name,
+            prior.fit.misfit_limit, prior.fit.correct}}};
+}
+
 ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOptions& options,
                                  const ProgressCallback& progress) {
   options.Validate();
@@ -175,7 +209,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   material.ladder = result.ladder.Json();
   nlohmann::json provenance = {{"software", std::string("brdfrig ") + BRDFRIG_VERSION},
                                {"source", capture.name},
-                               {"method", MethodOf(material.kind)}};
+                               {"method", MethodOf(material.kind)},
+                               {"options", options.ResultKey()}};
   if (brdf::IsSliceKind(material.kind)) {
     provenance["slices_from_positions"] = chosen.slices_from_positions;
   }

@@ -45,6 +45,9 @@ struct ReconstructOptions {
   // batch scripts that must not accept a material from fewer positions than were captured.
   bool strict = false;
   void Validate() const;
+  // Every option that changes the material (not hdr_dir, threads or strict), as JSON: recorded
+  // in the material's provenance ("options"), part of batch reprocessing's up-to-date key.
+  nlohmann::json ResultKey() const;
 };
 
 struct ReconstructionResult {

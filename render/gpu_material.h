@@ -19,12 +19,13 @@
 
 namespace brdfrig::render {
 
-inline constexpr int kMaxSlices = 64;
+inline constexpr int kMaxSlices = brdf::kMaxSlices;  // the material's own limit
 inline constexpr int kMaxLights = 8;
-// The microfacet table's knots (as many as brdf::MicrofacetModelParams::Validate allows) and
-// Fresnel correction knots; both multiples of 4 (packed four per vec4).
-inline constexpr int kMaxTableKnots = 256;
-inline constexpr int kMaxFresnelKnots = 64;
+// The microfacet table's knots and Fresnel correction knots: the material's own limits
+// (brdf::MicrofacetModelParams::Validate), so whatever the reader accepts is drawn.
+inline constexpr int kMaxTableKnots = brdf::kMaxTableKnots;
+inline constexpr int kMaxFresnelKnots = brdf::kMaxFresnelKnots;
+static_assert(kMaxTableKnots % 4 == 0 && kMaxFresnelKnots % 4 == 0, "packed four per vec4");
 
 class GpuMaterial {
  public:

@@ -94,7 +94,10 @@ SimulateSummary Simulate(const SimulateOptions& options) {
   std::map<std::string, SimAxis> axes;
   for (const geometry::RotationAxis& axis : scene.rig.axes)
     axes.emplace(axis.name, SimAxis(world, axis.name));
-  nlohmann::json log = {{"scene", options.scene.string()}, {"frames", nlohmann::json::array()}};
+  // Absolute: a reader resolves a relative scene against the capture, never its own directory.
+  nlohmann::json log = {
+      {"scene", std::filesystem::absolute(options.scene).lexically_normal().string()},
+      {"frames", nlohmann::json::array()}};
 
   for (std::size_t p = 0; p < positions.size(); ++p) {
     // The scene's roles apply to the scene's own positions, not to --positions.

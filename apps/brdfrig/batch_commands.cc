@@ -123,10 +123,15 @@ void RegisterRun(CLI::App* batch) {
   CLI::App* cmd = batch->add_subcommand(
       "run", "Reconstruct one item of a job directory (the array task's command)");
   cmd->add_option("job_dir", args->job_dir, "The job directory")->required();
-  cmd->add_option("--index", args->index, "Item index (default: $SLURM_ARRAY_TASK_ID)");
-  cmd->callback([args] {
+  const CLI::Option* index_option =
+      cmd->add_option("--index", args->index, "Item index (default: $SLURM_ARRAY_TASK_ID)");
+  cmd->callback([args, index_option] {
+    if (index_option->count() > 0 && args->index < 0) {
+      throw OptionsError("--index " + std::to_string(args->index) +
+                         ": an item index is >= 0 (items are numbered 0, 1, 2, ...)");
+    }
     const batch::JobDir dir(args->job_dir);
-    const int index = args->index >= 0 ? args->index : batch::TaskIndexFromEnvironment();
+    const int index = index_option->count() > 0 ? args->index : batch::TaskIndexFromEnvironment();
     const batch::TaskResult result = batch::RunTask(dir, index, Say);
     std::printf("%-10s %d %s -> %s (%.1f s)%s%s\n", result.item.StatusName().c_str(), index,
                 result.item.input.c_str(), result.item.material_file.c_str(), result.item.seconds,

@@ -10,6 +10,7 @@
 #include "batch/slurm.h"
 #include "batch/task.h"
 #include "common/error.h"
+#include "tests/common/run_brdfrig.h"
 
 namespace brdfrig::batch {
 namespace {
@@ -110,7 +111,22 @@ TEST(TaskIndexTest, ComesFromSlurmArrayTaskIdAndIsRefusedWhenMissingOrNotANumber
   EXPECT_EQ(TaskIndexFromEnvironment(), 17);
   ::setenv("SLURM_ARRAY_TASK_ID", "4294967294x", 1);
   EXPECT_THROW(TaskIndexFromEnvironment(), Error);
+  // Issue 25, finding 11: strtol's leading blanks and sign are not what Slurm sets.
+  for (const char* id : {" 3", "+3", "-3", "3 ", "0x3", "99999999999"}) {
+    ::setenv("SLURM_ARRAY_TASK_ID", id, 1);
+    EXPECT_THROW(TaskIndexFromEnvironment(), Error) << '"' << id << '"';
+  }
   ::unsetenv("SLURM_ARRAY_TASK_ID");
+}
+
+// Issue 25, finding 11: `--index=-1` was taken as "no --index" and blamed the environment.
+TEST(TaskIndexTest, NegativeIndexOptionIsRefusedAsAnIndex) {
+  ::unsetenv("SLURM_ARRAY_TASK_ID");
+  const auto result = brdfrig::testing::RunBrdfrig("batch run /nonexistent-job --index=-1");
+  EXPECT_NE(result.status, 0) << result.output;
+  EXPECT_NE(result.output.find("--index -1: an item index is >= 0"), std::string::npos)
+      << result.output;
+  EXPECT_EQ(result.output.find("SLURM_ARRAY_TASK_ID"), std::string::npos) << result.output;
 }
 
 }  // namespace

@@ -191,5 +191,34 @@ TEST(MaterialFileTest, WritingAnInvalidModelThrowsAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
+// Issue 25, finding 6: the reader refuses what the renderer cannot draw (one limit each), so a
+// file brdfrig reads is one every writer can use.
+TEST(MaterialFileTest, RefusesWhatTheRendererRefuses) {
+  nlohmann::json doc = nlohmann::json::parse(SerializeMaterial(MicrofacetExample()));
+  doc["microfacet"]["fresnel_knots"] = std::vector<double>(kMaxFresnelKnots, 0.0);
+  EXPECT_EQ(ErrorOf(doc.dump()), "no error");
+  doc["microfacet"]["fresnel_knots"] = std::vector<double>(256, 0.0);
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("fresnel_knots.size = 256; must be <= 64"));
+  // theta_in knots float cannot tell apart (the GPU spline divided by zero: a black sphere).
+  doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  doc["slices"][1]["theta_in"] = doc["slices"][0]["theta_in"].get<double>() + 1e-9;
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("slices[1].theta_in: must be greater"));
+  doc = nlohmann::json::parse(SerializeMaterial(Example()));
+  for (int k = 3; k <= kMaxSlices; ++k) {
+    nlohmann::json slice = doc["slices"][0];
+    slice["theta_in"] = 0.8 + 0.01 * k;
+    doc["slices"].push_back(slice);
+  }
+  EXPECT_THAT(ErrorOf(doc.dump()), HasSubstr("slices: at most 64 slices, got 65"));
+}
+
+// Issue 25, finding 11: a count beyond int was truncated silently.
+TEST(MaterialFileTest, SampleCountBeyondIntIsRefused) {
+  std::string text = SerializeMaterial(Example());
+  const std::size_t at = text.find("\"sample_count\": ") + 16;
+  text.replace(at, text.find_first_of(",\n}", at) - at, "99999999999");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("sample_count: expected a non-negative integer of at most"));
+}
+
 }  // namespace
 }  // namespace brdfrig::brdf

@@ -105,9 +105,14 @@ TEST(SliceModelTest, SingleSliceIsUsedAtEveryIncidence) {
   EXPECT_NEAR((a - b).abs().maxCoeff(), 0, 1e-15);
 }
 
-TEST(SliceModelTest, NearlyEqualKnotsStayFiniteAndBounded) {
+// Knots float cannot tell apart (the renderer's spline) are a clear error; the closest allowed
+// stay finite and bounded.
+TEST(SliceModelTest, NearlyEqualKnotsAreAnErrorAndTheClosestAllowedStayFiniteAndBounded) {
+  EXPECT_THROW(SliceModel({MakeSlice(30 * kDeg, 5, 0.1, 0.03, 0.06),
+                           MakeSlice(30 * kDeg + 1e-12, 50, 0.1, 0.03, 0.06)}),
+               Error);
   const SliceModel m({MakeSlice(30 * kDeg, 5, 0.1, 0.03, 0.06),
-                      MakeSlice(30 * kDeg + 1e-12, 50, 0.1, 0.03, 0.06),
+                      MakeSlice(30 * kDeg + kMinKnotSpacing, 50, 0.1, 0.03, 0.06),
                       MakeSlice(50 * kDeg, 10, 0.1, 0.03, 0.06)});
   for (double t = 25 * kDeg; t < 55 * kDeg; t += 0.1 * kDeg) {
     const Rgb f = m.EvalAngles(t, 0.02);

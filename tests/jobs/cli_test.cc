@@ -98,5 +98,52 @@ TEST(DemoCli, OutputThatIsAFileIsAnErrorNamingIt) {
   EXPECT_EQ(ReadFileToString(file), "not a directory");
 }
 
+// A seed material of two slices whose lobe peaks at `a1`: finite for the reader and the CPU.
+fs::path HugeSlices(const std::string& name, double a1) {
+  brdf::Material m;
+  for (double theta_in : {0.3, 0.7}) {
+    brdf::Slice s;
+    s.theta_in = theta_in;
+    for (auto& c : s.channel) c = {a1, 0.1, 0.03, 0.08};
+    m.slices.push_back(s);
+  }
+  const fs::path file = fs::temp_directory_path() / name;
+  brdf::WriteMaterialFile(file, m);
+  return file;
+}
+
+// Issue 25, finding 6: A1 = 1e308 times MERL's scale (1500) is infinite: the export wrote a
+// table of infinities (exit 0) that brdfrig itself then refused to read.
+TEST(ExportCli, ATableWithInfiniteValuesIsRefusedNamingTheMaterial) {
+  const fs::path material = HugeSlices("brdfrig_export_huge.json", 1e308);
+  const fs::path out = fs::temp_directory_path() / "brdfrig_export_huge.binary";
+  fs::remove(out);
+  const auto result = RunBrdfrig("export " + material.string() + " -o " + out.string());
+  EXPECT_EQ(result.status, 1) << result.output;
+  EXPECT_NE(result.output.find(material.string() + ": its MERL table would hold"),
+            std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Issue 25, finding 6: A1 = 4e38 is beyond float: the GPU's image was NaN, written as a black
+// sphere with exit 0.
+TEST(RenderCli, ANonFiniteRenderingIsAnErrorNotABlackPicture) {
+  const fs::path material = HugeSlices("brdfrig_render_huge.json", 4e38);
+  const fs::path out = fs::temp_directory_path() / "brdfrig_render_huge.png";
+  fs::remove(out);
+  const auto result = RunBrdfrig("render " + material.string() +
+                                 " --mesh sphere --width 64 --height 48 -o " + out.string());
+  EXPECT_EQ(result.status, 1) << result.output;
+  EXPECT_NE(result.output.find(material.string() + ": the render"), std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(out));
+  // A sane material still renders.
+  const auto sane = RunBrdfrig("render " + HugeSlices("brdfrig_render_sane.json", 20).string() +
+                               " --mesh sphere --width 64 --height 48 -o " + out.string());
+  EXPECT_EQ(sane.status, 0) << sane.output;
+  EXPECT_TRUE(fs::exists(out));
+}
+
 }  // namespace
 }  // namespace brdfrig

@@ -178,5 +178,53 @@ TEST(ReconstructCli, NonFinitePixelsAreInvalidAndReported) {
   EXPECT_FALSE(fs::exists(strict_out));
 }
 
+// Issue 25, finding 8: the options that change the material are part of the up-to-date key, so
+// a second run with another --model (or another fit option) refits; the same options skip.
+TEST(ReconstructCli, ChangedModelOrFitOptionRefitsInsteadOfUpToDate) {
+  const fs::path dir = fs::temp_directory_path() / "brdfrig_reconstruct_cli_options";
+  const brdf::Material truth = testing::FlatSliceTruth();
+  const CaptureSet capture = testing::SimulateCapture(dir, SmallScene(), &truth);
+  const fs::path photos = capture.positions[0].frames[0].file.parent_path();
+  const fs::path out = dir / "fit" / "material.json";
+  const std::string reconstruct = "reconstruct " + Q(photos) + " -o " + Q(out);
+  const auto ggx = RunBrdfrig(reconstruct + " --model ggx");
+  ASSERT_EQ(ggx.status, 0) << ggx.output;
+  EXPECT_EQ(ReadJson(out)["kind"], "ggx");
+  const auto beckmann = RunBrdfrig(reconstruct + " --model beckmann");
+  ASSERT_EQ(beckmann.status, 0) << beckmann.output;
+  EXPECT_EQ(beckmann.output.find("up to date"), std::string::npos) << beckmann.output;
+  EXPECT_EQ(ReadJson(out)["kind"], "beckmann");
+  const auto again = RunBrdfrig(reconstruct + " --model beckmann");
+  EXPECT_NE(again.output.find("up to date"), std::string::npos) << again.output;
+  const auto binned = RunBrdfrig(reconstruct + " --model beckmann --bin-width-deg 0.05");
+  ASSERT_EQ(binned.status, 0) << binned.output;
+  EXPECT_EQ(binned.output.find("up to date"), std::string::npos) << binned.output;
+  EXPECT_EQ(ReadJson(out)["provenance"]["options"]["model"], "beckmann");
+}
+
+// Issue 25, finding 7: a relative scene in capture.json is the one beside it; a scene.yaml in
+// the directory the command runs from is never read (here one that is not even YAML).
+TEST(ReconstructCli, RelativeSceneIsReadBesideTheCaptureNotTheCurrentDirectory) {
+  const fs::path dir = fs::temp_directory_path() / "brdfrig_reconstruct_cli_relative_scene";
+  const brdf::Material truth = testing::FlatSliceTruth();
+  const CaptureSet capture = testing::SimulateCapture(dir, SmallScene(), &truth);
+  const fs::path photos = capture.positions[0].frames[0].file.parent_path();
+  nlohmann::json manifest = ReadJson(photos / "capture.json");
+  EXPECT_TRUE(fs::path(manifest["scene"].get<std::string>()).is_absolute()) << manifest["scene"];
+  manifest["scene"] = "scene.yaml";
+  WriteFileAtomically(photos / "capture.json", manifest.dump());
+  fs::copy_file(dir / "scene.yaml", photos / "scene.yaml");
+  const fs::path elsewhere = dir / "elsewhere";
+  fs::create_directories(elsewhere);
+  std::ofstream(elsewhere / "scene.yaml") << "rig: [this is not the capture's scene\n";
+  const fs::path before = fs::current_path();
+  fs::current_path(elsewhere);
+  const auto result = RunBrdfrig("reconstruct --model seed " + Q(photos) + " -o " +
+                                 Q(dir / "fit" / "material.json"));
+  fs::current_path(before);
+  EXPECT_EQ(result.status, 0) << result.output;
+  EXPECT_EQ(result.output.find("elsewhere"), std::string::npos) << result.output;
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct
