@@ -21,6 +21,9 @@
 #include <utility>
 #include <vector>
 
+#include <map>
+#include <optional>
+#include "brdf/nbrdf_library.h"
 #include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -29,10 +32,7 @@
 #include "evaluate/svg_plot.h"
 #include "jobs/material_study.h"
 #include "jobs/study.h"
-#include "brdf/nbrdf_library.h"
 #include "prior/build_prior.h"
-#include <map>
-#include <optional>
 
 namespace {
 

@@ -167,83 +167,89 @@ int main(int argc, char** argv) {
   const geometry::RigGeometry rig = geometry::ParseRigGeometry(
       LoadYamlFile(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml").Required("rig"));
   const prior::MeasuredPrior full = prior::BuildPrior(set, build);
-  std::printf("prior study: %zu materials, leave-one-material-out priors (%d components, noise "
-              "%.3g, correction %.3g), noise-free samples at the plan's directions, %s plans\n",
-              names.size(), full.Components(), build.noise_sigma, build.correction_weight,
-              loo_design ? "left-out" : "all-material");
+  std::printf(
+      "prior study: %zu materials, leave-one-material-out priors (%d components, noise "
+      "%.3g, correction %.3g), noise-free samples at the plan's directions, %s plans\n",
+      names.size(), full.Components(), build.noise_sigma, build.correction_weight,
+      loo_design ? "left-out" : "all-material");
   std::vector<RigVariant> variants = {{"default rig", rig}};
   if (rig_changes) variants = RigChanges(rig);
   for (const RigVariant& variant : variants) {
-  for (const int count : counts) {
-    coverage::DesignOptions design;
-    design.count = count;
-    design.prior = &full;
-    design.objective = objective;
-    const coverage::PlanDesign designed = coverage::DesignPlan(variant.rig, design);
-    std::vector<geometry::AxisPositions> plan = designed.Positions();
-    std::printf("\n%s, %d positions: design RMS per node %.3f expected, %.3f leave-one-out\n",
-                variant.name.c_str(), count, designed.expected_rms, designed.leave_one_out_rms);
-    std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s %8s\n", count, "material", "prior",
-                "ggx", "micro", "albedo", "misfit", "outside");
-    std::map<std::string, std::vector<double>> sphere;
-    std::vector<double> albedo;
-    int outside = 0;
-    for (const std::string& name : names) {
-      const auto it = std::find_if(set.materials.begin(), set.materials.end(),
-                                   [&](const auto& m) { return m.name == name; });
-      if (it == set.materials.end()) {
-        std::fprintf(stderr, "no material %s\n", name.c_str());
-        return 2;
-      }
-      const int index = static_cast<int>(it - set.materials.begin());
-      const prior::MeasuredPrior loo = prior::BuildPrior(set, build, index);
-      if (loo_design) {
-        design.prior = &loo;
-        plan = coverage::DesignPlan(variant.rig, design).Positions();
-      }
-      const brdf::NeuralBrdf truth = brdf::ReadNbrdfMaterial(name);
-      const auto positions = PlanSamples(truth, variant.rig, plan);
-      std::vector<const reconstruct::PositionSamples*> all;
-      for (const auto& p : positions) all.push_back(&p);
-      reconstruct::LadderOptions options;
-      options.prior.prior = &loo;
-      const brdf::Material pm = reconstruct::FitRung(brdf::ModelKind::kPrior, all, options, false);
-      const Judged jp = Judge(truth, *pm.Model());
-      double ggx = NAN, micro = NAN;
-      if (compact) {
-        try {
-          const brdf::Material g = reconstruct::FitRung(brdf::ModelKind::kGgx, all, options, false);
-          ggx = Judge(truth, *g.Model()).sphere_db;
-          const brdf::Material mf = reconstruct::FitRung(brdf::ModelKind::kMicrofacet, all,
-                                                         options, false, nullptr, &g.microfacet);
-          micro = Judge(truth, *mf.Model()).sphere_db;
-        } catch (const std::exception& e) {
-          std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+    for (const int count : counts) {
+      coverage::DesignOptions design;
+      design.count = count;
+      design.prior = &full;
+      design.objective = objective;
+      const coverage::PlanDesign designed = coverage::DesignPlan(variant.rig, design);
+      std::vector<geometry::AxisPositions> plan = designed.Positions();
+      std::printf("\n%s, %d positions: design RMS per node %.3f expected, %.3f leave-one-out\n",
+                  variant.name.c_str(), count, designed.expected_rms, designed.leave_one_out_rms);
+      std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s %8s\n", count, "material", "prior",
+                  "ggx", "micro", "albedo", "misfit", "outside");
+      std::map<std::string, std::vector<double>> sphere;
+      std::vector<double> albedo;
+      int outside = 0;
+      for (const std::string& name : names) {
+        const auto it = std::find_if(set.materials.begin(), set.materials.end(),
+                                     [&](const auto& m) { return m.name == name; });
+        if (it == set.materials.end()) {
+          std::fprintf(stderr, "no material %s\n", name.c_str());
+          return 2;
         }
+        const int index = static_cast<int>(it - set.materials.begin());
+        const prior::MeasuredPrior loo = prior::BuildPrior(set, build, index);
+        if (loo_design) {
+          design.prior = &loo;
+          plan = coverage::DesignPlan(variant.rig, design).Positions();
+        }
+        const brdf::NeuralBrdf truth = brdf::ReadNbrdfMaterial(name);
+        const auto positions = PlanSamples(truth, variant.rig, plan);
+        std::vector<const reconstruct::PositionSamples*> all;
+        for (const auto& p : positions) all.push_back(&p);
+        reconstruct::LadderOptions options;
+        options.prior.prior = &loo;
+        const brdf::Material pm =
+            reconstruct::FitRung(brdf::ModelKind::kPrior, all, options, false);
+        const Judged jp = Judge(truth, *pm.Model());
+        double ggx = NAN, micro = NAN;
+        if (compact) {
+          try {
+            const brdf::Material g =
+                reconstruct::FitRung(brdf::ModelKind::kGgx, all, options, false);
+            ggx = Judge(truth, *g.Model()).sphere_db;
+            const brdf::Material mf = reconstruct::FitRung(brdf::ModelKind::kMicrofacet, all,
+                                                           options, false, nullptr, &g.microfacet);
+            micro = Judge(truth, *mf.Model()).sphere_db;
+          } catch (const std::exception& e) {
+            std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+          }
+        }
+        const bool out = reconstruct::OutsidePrior(pm);
+        outside += out;
+        sphere["prior"].push_back(jp.sphere_db);
+        sphere["ggx"].push_back(ggx);
+        sphere["microfacet"].push_back(micro);
+        albedo.push_back(jp.albedo_worst);
+        std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8.3f %8s\n", name.c_str(), jp.sphere_db, ggx,
+                    micro, 100 * jp.albedo_worst, pm.fit.value("misfit", NAN), out ? "yes" : "");
+        std::fflush(stdout);
       }
-      const bool out = reconstruct::OutsidePrior(pm);
-      outside += out;
-      sphere["prior"].push_back(jp.sphere_db);
-      sphere["ggx"].push_back(ggx);
-      sphere["microfacet"].push_back(micro);
-      albedo.push_back(jp.albedo_worst);
-      std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8.3f %8s\n", name.c_str(), jp.sphere_db, ggx,
-                  micro, 100 * jp.albedo_worst, pm.fit.value("misfit", NAN), out ? "yes" : "");
-      std::fflush(stdout);
-    }
-    for (const auto& [rung, values] : sphere) {
-      double sum = 0, worst = INFINITY;
-      int n = 0;
-      for (const double v : values) {
-        if (std::isfinite(v)) sum += v, worst = std::min(worst, v), ++n;
+      for (const auto& [rung, values] : sphere) {
+        double sum = 0, worst = INFINITY;
+        int n = 0;
+        for (const double v : values) {
+          if (std::isfinite(v)) sum += v, worst = std::min(worst, v), ++n;
+        }
+        std::printf("%d positions, %-10s sphere mean %.2f dB, worst %.2f dB (%d materials)\n",
+                    count, rung.c_str(), n ? sum / n : NAN, worst, n);
       }
-      std::printf("%d positions, %-10s sphere mean %.2f dB, worst %.2f dB (%d materials)\n", count,
-                  rung.c_str(), n ? sum / n : NAN, worst, n);
+      const long within =
+          std::count_if(albedo.begin(), albedo.end(), [](double a) { return a <= 0.1; });
+      std::printf(
+          "%d positions, prior albedo within 10 %% at 0-75°: %ld of %zu; outside the prior: "
+          "%d\n",
+          count, within, albedo.size(), outside);
     }
-    const long within = std::count_if(albedo.begin(), albedo.end(), [](double a) { return a <= 0.1; });
-    std::printf("%d positions, prior albedo within 10 %% at 0-75°: %ld of %zu; outside the prior: "
-                "%d\n", count, within, albedo.size(), outside);
-  }
   }
   return 0;
 }

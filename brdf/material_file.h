@@ -41,9 +41,9 @@ struct SliceDiagnostics {
 // shared diffuse level and energy conservation, the data-driven microfacet model, the
 // analytic baselines, and the measured prior's table (prior/).
 enum class ModelKind { kSeed, kSeedConstrained, kMicrofacet, kGgx, kBeckmann, kPrior };
-inline constexpr ModelKind kAllModelKinds[] = {ModelKind::kSeed,     ModelKind::kSeedConstrained,
+inline constexpr ModelKind kAllModelKinds[] = {ModelKind::kSeed,       ModelKind::kSeedConstrained,
                                                ModelKind::kMicrofacet, ModelKind::kGgx,
-                                               ModelKind::kBeckmann, ModelKind::kPrior};
+                                               ModelKind::kBeckmann,   ModelKind::kPrior};
 const char* ModelKindName(ModelKind kind);
 // Throws brdfrig::Error listing the kinds for an unknown name.
 ModelKind ParseModelKind(const std::string& name);
@@ -51,10 +51,10 @@ bool IsSliceKind(ModelKind kind);
 
 struct Material {
   ModelKind kind = ModelKind::kSeed;
-  std::vector<Slice> slices;                        // slice kinds: sorted by theta_in
-  std::vector<SliceDiagnostics> diagnostics;        // slice kinds: empty, or one per slice
-  MicrofacetModelParams microfacet;                 // microfacet kinds (distribution matches kind)
-  RusinkiewiczGrid table_grid;                      // prior: the table's grid and values
+  std::vector<Slice> slices;                  // slice kinds: sorted by theta_in
+  std::vector<SliceDiagnostics> diagnostics;  // slice kinds: empty, or one per slice
+  MicrofacetModelParams microfacet;           // microfacet kinds (distribution matches kind)
+  RusinkiewiczGrid table_grid;                // prior: the table's grid and values
   TableValues table;
   nlohmann::json fit = nlohmann::json::object();    // the fit's diagnostics (non-slice kinds)
   nlohmann::json ladder = nlohmann::json::array();  // every rung's validation scores

@@ -25,10 +25,10 @@
 namespace brdfrig::brdf {
 
 struct RusinkiewiczGrid {
-  int theta_h = 64;  // nodes, sqrt-spaced over [0, π/2]
-  int theta_d = 32;  // nodes over [0, π/2]
-  int phi_d = 8;     // nodes over [0, π/2]
-  double epsilon = 1e-4;   // ε of the mapping
+  int theta_h = 64;         // nodes, sqrt-spaced over [0, π/2]
+  int theta_d = 32;         // nodes over [0, π/2]
+  int phi_d = 8;            // nodes over [0, π/2]
+  double epsilon = 1e-4;    // ε of the mapping
   double cos_floor = 0.05;  // floor of each cosine in c
   int Cells() const { return theta_h * theta_d * phi_d; }
   int Index(int ih, int id, int ip) const { return (ih * theta_d + id) * phi_d + ip; }

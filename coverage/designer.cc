@@ -486,17 +486,16 @@ std::string PlanDesign::ToString() const {
   std::ostringstream out;
   out << "designed plan: " << options.count << " positions"
       << (options.validation ? " + " + std::to_string(options.validation) + " validation" : "")
-      << " chosen from " << candidates << " candidates (grid step " << Num(step_deg)
-      << "°) by "
-      << (objective == "prior" ? "the expected reconstruction error under the prior '" +
-                                     prior_name + "'"
-                               : std::string("weighted (theta_h, theta_d) coverage"))
+      << " chosen from " << candidates << " candidates (grid step " << Num(step_deg) << "°) by "
+      << (objective == "prior"
+              ? "the expected reconstruction error under the prior '" + prior_name + "'"
+              : std::string("weighted (theta_h, theta_d) coverage"))
       << ": coverage score " << Num(score, 0) << " of " << Num(max_score, 0)
       << ", covered fraction " << Num(100 * covered_fraction) << " %\n";
   if (objective == "prior") {
     out << "  RMS error of ln(f cos cos + eps) per table node: " << Num(prior_only_rms, 3)
-        << " from the prior alone, " << Num(expected_rms, 3)
-        << " expected with these photos, " << Num(leave_one_out_rms, 3)
+        << " from the prior alone, " << Num(expected_rms, 3) << " expected with these photos, "
+        << Num(leave_one_out_rms, 3)
         << " measured leave-one-material-out over the prior's training materials\n";
   }
   out << "  near retro-reflection: " << (has_retro ? "yes" : "NO (the rig cannot)")

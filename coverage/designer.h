@@ -40,10 +40,10 @@ struct DesignOptions {
   // prior (prior_objective.h; the coverage weights below then only choose validation
   // positions); "coverage": by the weighted coverage above.
   std::string objective = "prior";
-  int prior_components = 32;  // leading components the prior objective uses
+  int prior_components = 32;                    // leading components the prior objective uses
   const prior::MeasuredPrior* prior = nullptr;  // nullptr: the shipped prior (studies pass one)
-  int count = 6;       // fitted positions, 1..24
-  int validation = 0;  // extra validation positions, 0..24
+  int count = 6;                                // fitted positions, 1..24
+  int validation = 0;                           // extra validation positions, 0..24
   double step_deg = 10;
   int max_candidates = 50000;  // 100 .. 1000000
   int refine_passes = 4;       // 0 .. 20
@@ -81,7 +81,7 @@ struct DesignedPosition {
   // Prior objective: the expected RMS error per table node after this position (in the final
   // order) and how much this position lowered it.
   double expected_rms_after = 0, prior_gain = 0;
-  std::string reason;         // one line: why this position (what it contributes)
+  std::string reason;  // one line: why this position (what it contributes)
   std::vector<WidenHint> widen;
 };
 

@@ -11,7 +11,8 @@ namespace brdfrig::coverage {
 
 PriorObjective::PriorObjective(const prior::MeasuredPrior& prior, int components,
                                int points_per_side)
-    : prior_(prior), k_(std::clamp(components, 1, std::min(prior.Components(), kMaxComponents))),
+    : prior_(prior),
+      k_(std::clamp(components, 1, std::min(prior.Components(), kMaxComponents))),
       points_per_side_(std::max(points_per_side, 2)) {
   components_ = prior.components.leftCols(k_);
   inverse_variances_ = prior.variances.head(k_).cwiseInverse();
@@ -82,8 +83,8 @@ double PriorObjective::LeaveOneOutError(const Eigen::MatrixXd& total) const {
     const Eigen::MatrixXd own = coefficients.middleRows(3 * m, 3);  // 3 × K
     const double n = static_cast<double>(rows - 3);
     const Eigen::VectorXd mean = (sum - own.colwise().sum().transpose()) / n;
-    Eigen::MatrixXd cov = (all - own.transpose() * own) / (n - 1) -
-                          mean * mean.transpose() * (n / (n - 1));
+    Eigen::MatrixXd cov =
+        (all - own.transpose() * own) / (n - 1) - mean * mean.transpose() * (n / (n - 1));
     cov.diagonal().array() += 1e-9 * cov.diagonal().mean();
     const Eigen::LLT<Eigen::MatrixXd> cov_llt(cov);
     Eigen::MatrixXd precision = data + cov_llt.solve(Eigen::MatrixXd::Identity(k_, k_));

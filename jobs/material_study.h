@@ -51,7 +51,7 @@ struct MaterialStudyOptions {
   // The measured prior for a material (nullptr or empty: the shipped prior). Studies of the
   // shipped measured materials pass the prior built without the material.
   std::function<const prior::MeasuredPrior*(const StudyMaterial&)> prior_for;
-  void Validate() const;    // throws OptionsError
+  void Validate() const;  // throws OptionsError
 };
 
 // One rung's headline figures (same protocols as the row's).

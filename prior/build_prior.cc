@@ -52,10 +52,10 @@ TrainingSet ReadTrainingSet(const std::vector<std::filesystem::path>& directorie
   for (const auto& [name, path] : files) {
     brdfs.push_back(brdf::NeuralBrdf::Read(path));
     const std::string& db = brdfs.back().database();
-    set.materials.push_back({name, db,
-                             "MIT (neural fit, Sztrajman et al. 2021, asztr/Neural-BRDF) of a " +
-                                 db + " measurement",
-                             Sha256FileHex(path)});
+    set.materials.push_back(
+        {name, db,
+         "MIT (neural fit, Sztrajman et al. 2021, asztr/Neural-BRDF) of a " + db + " measurement",
+         Sha256FileHex(path)});
   }
   set.tables.resize(brdfs.size());
   ParallelFor(brdfs.size(), [&](std::size_t begin, std::size_t end) {
@@ -76,8 +76,7 @@ PriorBuildOptions OptionsOf(const MeasuredPrior& prior) {
   return o;
 }
 
-MeasuredPrior BuildPrior(const TrainingSet& set, const PriorBuildOptions& options,
-                         int leave_out) {
+MeasuredPrior BuildPrior(const TrainingSet& set, const PriorBuildOptions& options, int leave_out) {
   options.Validate();
   const int cells = options.grid.Cells();
   std::vector<int> used;

@@ -16,7 +16,7 @@ namespace brdfrig::prior {
 struct PriorBuildOptions {
   std::string name = "measured";
   brdf::RusinkiewiczGrid grid;
-  int max_components = 64;   // K; fewer when the training set has fewer channels
+  int max_components = 64;  // K; fewer when the training set has fewer channels
   // Recorded in the prior (MeasuredPrior::noise_sigma). 1: the best of 0.1–4 on the sphere test
   // of 16 materials left out one at a time (docs/prior.md).
   double noise_sigma = 1;

@@ -80,15 +80,14 @@ void WritePrior(const MeasuredPrior& prior, const std::filesystem::path& path) {
       {"noise_sigma", prior.noise_sigma},
       {"correction_weight", prior.correction_weight},
       {"built_with", prior.built_with},
-      {"payload", "float32 little-endian: mean[cells], components[K][cells], variances[K], "
-                  "training_coefficients[3 x materials][K]"},
+      {"payload",
+       "float32 little-endian: mean[cells], components[K][cells], variances[K], "
+       "training_coefficients[3 x materials][K]"},
   };
   header["training"] = nlohmann::json::array();
   for (const TrainingMaterial& m : prior.training) {
-    header["training"].push_back({{"name", m.name},
-                                  {"database", m.database},
-                                  {"licence", m.licence},
-                                  {"sha256", m.sha256}});
+    header["training"].push_back(
+        {{"name", m.name}, {"database", m.database}, {"licence", m.licence}, {"sha256", m.sha256}});
   }
   std::string bytes = kMagic;
   bytes += header.dump(1) + '\n';
@@ -129,8 +128,8 @@ MeasuredPrior ReadPrior(const std::filesystem::path& path) {
                          int hi) {
     const double x = reader.Number(object, at, key);
     if (x != std::floor(x) || x < 1 || x > hi) {
-      reader.Fail(brdf::JsonReader::Join(at, key), "expected a whole number in [1, " +
-                                                       std::to_string(hi) + "]");
+      reader.Fail(brdf::JsonReader::Join(at, key),
+                  "expected a whole number in [1, " + std::to_string(hi) + "]");
     }
     return static_cast<int>(x);
   };
@@ -152,18 +151,17 @@ MeasuredPrior ReadPrior(const std::filesystem::path& path) {
   if (!training.is_array() || training.empty()) reader.Fail("training", "expected a list");
   for (std::size_t i = 0; i < training.size(); ++i) {
     const std::string at = "training[" + std::to_string(i) + "]";
-    p.training.push_back({reader.String(training[i], at, "name"),
-                          reader.String(training[i], at, "database"),
-                          reader.String(training[i], at, "licence"),
-                          reader.String(training[i], at, "sha256")});
+    p.training.push_back(
+        {reader.String(training[i], at, "name"), reader.String(training[i], at, "database"),
+         reader.String(training[i], at, "licence"), reader.String(training[i], at, "sha256")});
   }
   const int cells = p.grid.Cells();
   const auto rows = static_cast<Eigen::Index>(3 * p.training.size());
   std::size_t offset = end + 1;
   const auto take = [&](std::size_t n, double* out, const char* what) {
     if (!TakeFloats(bytes, &offset, n, out)) {
-      throw FileError(source, std::string("payload: the ") + what +
-                                  " are missing, cut short or not finite");
+      throw FileError(
+          source, std::string("payload: the ") + what + " are missing, cut short or not finite");
     }
   };
   p.mean.resize(cells);

@@ -30,8 +30,8 @@ struct TrainingMaterial {
 };
 
 struct MeasuredPrior {
-  std::string name;   // e.g. "measured-80"
-  int version = 1;    // of the file format
+  std::string name;  // e.g. "measured-80"
+  int version = 1;   // of the file format
   brdf::RusinkiewiczGrid grid;
   // Standard deviation of one observation's q (unit weight) in the fit: photo noise plus what
   // the components cannot represent. Chosen by leave-one-material-out (docs/prior.md).
@@ -42,9 +42,9 @@ struct MeasuredPrior {
   std::vector<TrainingMaterial> training;
   std::string built_with;  // "brdfrig <version>"
 
-  Eigen::VectorXd mean;                  // q per node (grid.Cells())
-  Eigen::MatrixXd components;            // cells × K, orthonormal columns
-  Eigen::VectorXd variances;             // K, descending: variance of each coefficient
+  Eigen::VectorXd mean;                   // q per node (grid.Cells())
+  Eigen::MatrixXd components;             // cells × K, orthonormal columns
+  Eigen::VectorXd variances;              // K, descending: variance of each coefficient
   Eigen::MatrixXd training_coefficients;  // (3 · training.size()) × K, rows material-major, RGB
 
   int Components() const { return static_cast<int>(components.cols()); }

@@ -32,12 +32,12 @@ struct Observation {
 
 struct PriorFitOptions {
   double misfit_limit = 0.5;  // residual RMS in q above which the material is outside the prior
-  bool correct = true;      // step 2
+  bool correct = true;        // step 2
   void Validate() const;
 };
 
 struct PriorFitResult {
-  brdf::TableValues table;                // q per channel and node
+  brdf::TableValues table;  // q per channel and node
   std::array<Eigen::VectorXd, 3> coefficients;
   double misfit = 0;  // step 3, the worst channel
   bool outside_prior = false;

@@ -18,9 +18,9 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Fitting order: ggx before microfacet (the table starts from the GGX fit of the same data).
-constexpr brdf::ModelKind kLadder[] = {brdf::ModelKind::kSeed, brdf::ModelKind::kSeedConstrained,
-                                       brdf::ModelKind::kGgx, brdf::ModelKind::kBeckmann,
-                                       brdf::ModelKind::kMicrofacet, brdf::ModelKind::kPrior};
+constexpr brdf::ModelKind kLadder[] = {
+    brdf::ModelKind::kSeed,     brdf::ModelKind::kSeedConstrained, brdf::ModelKind::kGgx,
+    brdf::ModelKind::kBeckmann, brdf::ModelKind::kMicrofacet,      brdf::ModelKind::kPrior};
 
 // Every position's samples, each position weighing the same in the fit: a sample's weight is
 // its pixel count, and how many pixels a photo gives the cut-out depends on the camera's

@@ -72,8 +72,8 @@ brdf::Material FitPriorRung(const std::vector<const PositionSamples*>& positions
     if (!(total > 0)) continue;
     used.push_back(position->index);
     for (const DirectionSample& s : position->directions.samples) {
-      observations.push_back({s.l, s.v, brdf::Rgb(s.f[0], s.f[1], s.f[2]),
-                              s.weight * 1000.0 / total});
+      observations.push_back(
+          {s.l, s.v, brdf::Rgb(s.f[0], s.f[1], s.f[2]), s.weight * 1000.0 / total});
     }
   }
   const prior::PriorFitResult fit = prior::FitPrior(p, observations, options.fit);
@@ -91,17 +91,17 @@ brdf::Material FitPriorRung(const std::vector<const PositionSamples*>& positions
                   {"positions", used}};
   nlohmann::json warnings = nlohmann::json::array();
   if (fit.outside_prior) {
-    warnings.push_back("the prior's components miss the samples by " +
-                       std::to_string(fit.misfit) +
+    warnings.push_back("the prior's components miss the samples by " + std::to_string(fit.misfit) +
                        " (RMS of ln(f cos cos + eps)): the material lies outside what the prior "
                        "has seen, so this rung is not chosen by default");
   }
   const double scale = LimitTableEnergy(&material);
   material.fit["energy_scale"] = scale;
   if (scale > 1) {
-    warnings.push_back("the table reflected more light than it received at some incidence "
-                       "angles: scaled down there by up to " +
-                       std::to_string(scale));
+    warnings.push_back(
+        "the table reflected more light than it received at some incidence "
+        "angles: scaled down there by up to " +
+        std::to_string(scale));
   }
   material.fit["warnings"] = warnings;
   // What is written is the 16-bit table: keep exactly that in memory too, so a material used

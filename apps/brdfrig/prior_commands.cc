@@ -48,8 +48,8 @@ void RegisterPriorCommands(CLI::App& app) {
     const prior::MeasuredPrior p = prior::BuildPrior(set, args->options);
     prior::WritePrior(p, args->output);
     std::printf("prior '%s': %zu training materials, %d components, grid %d x %d x %d -> %s\n",
-                p.name.c_str(), p.training.size(), p.Components(), p.grid.theta_h,
-                p.grid.theta_d, p.grid.phi_d, args->output.c_str());
+                p.name.c_str(), p.training.size(), p.Components(), p.grid.theta_h, p.grid.theta_d,
+                p.grid.phi_d, args->output.c_str());
   });
 
   auto path = std::make_shared<std::string>();
@@ -59,12 +59,13 @@ void RegisterPriorCommands(CLI::App& app) {
     const std::filesystem::path file =
         path->empty() ? prior::DefaultPriorPath() : std::filesystem::path(*path);
     const prior::MeasuredPrior p = prior::ReadPrior(file);
-    std::printf("%s: prior '%s' (format version %d, %s)\n", file.c_str(), p.name.c_str(),
-                p.version, p.built_with.c_str());
-    std::printf("grid %d x %d x %d (theta_h sqrt-spaced, theta_d, phi_d), epsilon %g, cosine "
-                "floor %g; %d components; noise %g; correction weight %g\n",
-                p.grid.theta_h, p.grid.theta_d, p.grid.phi_d, p.grid.epsilon, p.grid.cos_floor,
-                p.Components(), p.noise_sigma, p.correction_weight);
+    std::printf("%s: prior '%s' (format version %d, %s)\n", file.c_str(), p.name.c_str(), p.version,
+                p.built_with.c_str());
+    std::printf(
+        "grid %d x %d x %d (theta_h sqrt-spaced, theta_d, phi_d), epsilon %g, cosine "
+        "floor %g; %d components; noise %g; correction weight %g\n",
+        p.grid.theta_h, p.grid.theta_d, p.grid.phi_d, p.grid.epsilon, p.grid.cos_floor,
+        p.Components(), p.noise_sigma, p.correction_weight);
     std::printf("%zu training materials:\n", p.training.size());
     for (const prior::TrainingMaterial& m : p.training) {
       std::printf("  %-32s %-5s %s  %s\n", m.name.c_str(), m.database.c_str(),

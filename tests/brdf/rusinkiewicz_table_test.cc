@@ -59,8 +59,8 @@ TEST(RusinkiewiczTable, TabulatedGgxMatchesTheModelAndIsReciprocal) {
   // A tilted normal: the same value in the rotated frame.
   const Eigen::Matrix3d r = Eigen::AngleAxisd(0.4, Vec3(1, 2, 0).normalized()).toRotationMatrix();
   const Vec3 l = Vec3(0.3, 0.1, 0.9).normalized(), v = Vec3(-0.2, -0.3, 0.8).normalized();
-  EXPECT_NEAR(table.Eval(r * l, r * v, r * Vec3::UnitZ())[0],
-              table.Eval(l, v, Vec3::UnitZ())[0], 1e-9);
+  EXPECT_NEAR(table.Eval(r * l, r * v, r * Vec3::UnitZ())[0], table.Eval(l, v, Vec3::UnitZ())[0],
+              1e-9);
 }
 
 TEST(RusinkiewiczTable, MaterialFileRoundTripsWithinTheEncodingStep) {
@@ -78,7 +78,8 @@ TEST(RusinkiewiczTable, MaterialFileRoundTripsWithinTheEncodingStep) {
     }
   }
   EXPECT_LT(worst, 2e-4);  // half a 16-bit step of q's range
-  EXPECT_EQ(SerializeMaterial(back), SerializeMaterial(ParseMaterial(SerializeMaterial(back), "b")));
+  EXPECT_EQ(SerializeMaterial(back),
+            SerializeMaterial(ParseMaterial(SerializeMaterial(back), "b")));
 
   std::string broken = text;
   broken.replace(broken.find("\"red\": \"") + 8, 4, "!!!!");

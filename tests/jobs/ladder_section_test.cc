@@ -99,8 +99,9 @@ TEST(LadderSectionTest, SmallDemoReportsTheLadderAndTheValidationPhoto) {
   std::string scene = ReadFileToString(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/ggx.yaml");
   scene = std::regex_replace(scene, std::regex("resolution: \\[1600, 1200\\]"),
                              "resolution: [320, 240]");
-  scene = std::regex_replace(scene, std::regex("positions: \\{design: \\{count: 6, objective: coverage\\}\\}"),
-                             "positions: {design: {count: 4, validation: 1, objective: coverage}}");
+  scene = std::regex_replace(
+      scene, std::regex("positions: \\{design: \\{count: 6, objective: coverage\\}\\}"),
+      "positions: {design: {count: 4, validation: 1, objective: coverage}}");
   ASSERT_NE(scene.find("validation: 1"), std::string::npos) << "the default scene changed";
   WriteFileAtomically(dir / "scene.yaml", scene);
   DemoOptions options;

@@ -31,8 +31,7 @@ geometry::AxisPositions At(double camera_arm_deg, double light_arm_deg, double a
 // Every material is seen at these: the default scene's designed plan and two mirror positions
 // (the highlight at the cut-out's centre near the normal, and grazing).
 std::vector<geometry::AxisPositions> CommonPositions() {
-  const sim::Scene scene =
-      sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/ggx.yaml");
+  const sim::Scene scene = sim::LoadScene(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/ggx.yaml");
   std::vector<geometry::AxisPositions> positions = scene.capture.positions;
   positions.push_back(At(15, -15, 0));
   positions.push_back(At(65, -65, 0));
