@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/plan_samples.h"
 #include "brdf/material_file.h"
 #include "common/angles.h"
 #include "common/format.h"
@@ -51,16 +52,6 @@ namespace {
 using namespace brdfrig;
 namespace fs = std::filesystem;
 
-reconstruct::DirectionSample SampleOf(const brdf::Brdf& truth, const brdf::Vec3& l,
-                                      const brdf::Vec3& v) {
-  reconstruct::DirectionSample s;
-  s.l = l;
-  s.v = v;
-  const brdf::Rgb f = truth.Eval(l, v, brdf::Vec3::UnitZ());
-  for (int c = 0; c < 3; ++c) s.f[c] = f[c];
-  return s;
-}
-
 brdf::Vec3 Direction(double theta, double phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
@@ -73,35 +64,11 @@ reconstruct::PositionSamples DenseSamples(const brdf::Brdf& truth) {
       for (int a = 0; a < 13; ++a) {
         const double ti = Radians(2.5 + 82.5 * i / 17), to = Radians(2.5 + 82.5 * o / 17);
         p.directions.samples.push_back(
-            SampleOf(truth, Direction(ti, M_PI), Direction(to, M_PI * a / 12)));
+            bench::SampleOf(truth, Direction(ti, M_PI), Direction(to, M_PI * a / 12)));
       }
     }
   }
   return p;
-}
-
-// 25 x 25 points over the cut-out per position, as the coverage map sees them.
-std::vector<reconstruct::PositionSamples> DesignedSamples(
-    const brdf::Brdf& truth, const geometry::RigGeometry& rig,
-    const std::vector<geometry::AxisPositions>& plan) {
-  std::vector<reconstruct::PositionSamples> out;
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    reconstruct::PositionSamples p;
-    p.index = static_cast<int>(i);
-    const geometry::Vec3 camera = rig.CameraAt(plan[i]).CenterInWorld();
-    const geometry::Vec3 light = rig.LightAt(plan[i]);
-    const int n = 25;
-    for (int iy = 0; iy < n; ++iy) {
-      for (int ix = 0; ix < n; ++ix) {
-        const geometry::Vec3 x((ix / (n - 1.0) - 0.5) * rig.target.cutout_width,
-                               (iy / (n - 1.0) - 0.5) * rig.target.cutout_height, 0);
-        p.directions.samples.push_back(
-            SampleOf(truth, (light - x).normalized(), (camera - x).normalized()));
-      }
-    }
-    out.push_back(std::move(p));
-  }
-  return out;
 }
 
 // The study's capture of `material` on `plan`, measured position by position.
@@ -214,9 +181,8 @@ const std::vector<ChoiceRule>& ChoiceRules(bool validation) {
 // One material: every rung's sphere mean and the rung each rule chooses among the rungs that
 // conserve energy. The last `validation` positions of the plan are validation positions.
 // Returns the sphere mean per rule, then the oracle's.
-std::vector<double> CompareChoices(const jobs::StudyMaterial& material,
-                                   const jobs::StudyPlan& plan, int validation,
-                                   const brdf::Brdf& truth) {
+std::vector<double> CompareChoices(const jobs::StudyMaterial& material, const jobs::StudyPlan& plan,
+                                   int validation, const brdf::Brdf& truth) {
   auto captured = CapturedSamples(
       material, plan,
       fs::temp_directory_path() / ("brdfrig_model_ceiling." + std::to_string(getpid())));
@@ -336,10 +302,10 @@ int main(int argc, char** argv) {
     design.count = count;
     design.validation = validation;
     const coverage::PlanDesign designed = coverage::DesignPlan(scene.rig, design);
-    const jobs::StudyPlan choice_plan{plan.name + (validation ? " + " + std::to_string(validation) +
-                                                                   " validation"
-                                                             : std::string()),
-                                      designed.Positions()};
+    const jobs::StudyPlan choice_plan{
+        plan.name +
+            (validation ? " + " + std::to_string(validation) + " validation" : std::string()),
+        designed.Positions()};
     const std::vector<ChoiceRule>& rules = ChoiceRules(validation > 0);
     std::printf(
         "Sphere mean (dB) of every rung fitted to the captured data, (its held-out score); the "
@@ -392,7 +358,7 @@ int main(int argc, char** argv) {
         fs::temp_directory_path() / ("brdfrig_model_ceiling." + std::to_string(getpid())));
     const std::vector<reconstruct::PositionSamples> data[kData] = {
         {DenseSamples(*truth)},
-        DesignedSamples(*truth, scene.rig, plan.positions),
+        bench::PlanSamples(*truth, scene.rig, plan.positions),
         WithTruth(captured, *truth),
         captured};
     for (int d = 0; d < kData; ++d) {

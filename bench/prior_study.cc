@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/plan_samples.h"
 #include "brdf/metrics.h"
 #include "brdf/nbrdf.h"
 #include "brdf/nbrdf_library.h"
@@ -45,33 +46,6 @@ std::vector<std::string> SplitList(const std::string& s) {
     out.push_back(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (comma == std::string::npos) break;
     start = comma + 1;
-  }
-  return out;
-}
-
-std::vector<reconstruct::PositionSamples> PlanSamples(
-    const brdf::Brdf& truth, const geometry::RigGeometry& rig,
-    const std::vector<geometry::AxisPositions>& plan) {
-  std::vector<reconstruct::PositionSamples> out;
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    reconstruct::PositionSamples p;
-    p.index = static_cast<int>(i);
-    const geometry::Vec3 camera = rig.CameraAt(plan[i]).CenterInWorld();
-    const geometry::Vec3 light = rig.LightAt(plan[i]);
-    const int n = 25;
-    for (int iy = 0; iy < n; ++iy) {
-      for (int ix = 0; ix < n; ++ix) {
-        const geometry::Vec3 x((ix / (n - 1.0) - 0.5) * rig.target.cutout_width,
-                               (iy / (n - 1.0) - 0.5) * rig.target.cutout_height, 0);
-        reconstruct::DirectionSample s;
-        s.l = (light - x).normalized();
-        s.v = (camera - x).normalized();
-        const brdf::Rgb f = truth.Eval(s.l, s.v, brdf::Vec3::UnitZ());
-        for (int c = 0; c < 3; ++c) s.f[c] = f[c];
-        p.directions.samples.push_back(s);
-      }
-    }
-    out.push_back(std::move(p));
   }
   return out;
 }
@@ -203,7 +177,7 @@ int main(int argc, char** argv) {
           plan = coverage::DesignPlan(variant.rig, design).Positions();
         }
         const brdf::NeuralBrdf truth = brdf::ReadNbrdfMaterial(name);
-        const auto positions = PlanSamples(truth, variant.rig, plan);
+        const auto positions = bench::PlanSamples(truth, variant.rig, plan);
         std::vector<const reconstruct::PositionSamples*> all;
         for (const auto& p : positions) all.push_back(&p);
         reconstruct::LadderOptions options;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -156,6 +157,28 @@ bool MakeCandidate(const geometry::RigGeometry& rig, const geometry::AxisPositio
   return true;
 }
 
+// Tries the neighbours of `*best` at half and quarter steps along each axis, keeping any that
+// raises `value` above `*best_value` (a local continuous refinement of a swap).
+void RefineAmongNeighbours(const geometry::RigGeometry& rig, const DesignOptions& o,
+                           const Objective& coverage, const PriorObjective* prior, double step,
+                           const std::function<double(const Candidate&)>& value, Candidate* best,
+                           double* best_value) {
+  for (const double fraction : {0.5, 0.25}) {
+    // Neighbours of the best so far (a copy: `*best` may change inside the loop).
+    const geometry::AxisPositions base = best->axes;
+    for (const auto& [name, angle] : base) {
+      for (const double sign : {-1.0, 1.0}) {
+        geometry::AxisPositions axes = base;
+        axes[name] = angle + sign * fraction * step;
+        Candidate c;
+        if (!MakeCandidate(rig, axes, o, coverage, &c, prior)) continue;
+        const double v = value(c);
+        if (v > *best_value + 1e-12) *best = std::move(c), *best_value = v;
+      }
+    }
+  }
+}
+
 // Greedy selection and swaps under the prior objective: each step takes the candidate that
 // lowers the expected error most (prior_objective.h).
 std::vector<Candidate> ChooseForPrior(const geometry::RigGeometry& rig, const DesignOptions& o,
@@ -194,19 +217,12 @@ std::vector<Candidate> ChooseForPrior(const geometry::RigGeometry& rig, const De
       const std::size_t best = best_of(rest, &error);
       Candidate replacement = slot;
       if (error < best_error - 1e-12) replacement = candidates[best], best_error = error;
-      for (const double fraction : {0.5, 0.25}) {
-        const geometry::AxisPositions base = replacement.axes;
-        for (const auto& [name, angle] : base) {
-          for (const double sign : {-1.0, 1.0}) {
-            geometry::AxisPositions axes = base;
-            axes[name] = angle + sign * fraction * step;
-            Candidate c;
-            if (!MakeCandidate(rig, axes, o, coverage, &c, &prior)) continue;
-            const double e = prior.ExpectedError(rest + c.information);
-            if (e < best_error - 1e-12) replacement = std::move(c), best_error = e;
-          }
-        }
-      }
+      double value = -best_error;
+      RefineAmongNeighbours(
+          rig, o, coverage, &prior, step,
+          [&](const Candidate& c) { return -prior.ExpectedError(rest + c.information); },
+          &replacement, &value);
+      best_error = -value;
       if (best_error < current - 1e-12) {
         total = rest + replacement.information;
         slot = std::move(replacement);
@@ -408,20 +424,9 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
       Candidate replacement = slot;
       double best_gain = current;
       if (gain > best_gain + 1e-9) replacement = candidates[best], best_gain = gain;
-      for (const double fraction : {0.5, 0.25}) {
-        // Neighbours of the best so far (a copy: `replacement` may change inside the loop).
-        const geometry::AxisPositions base = replacement.axes;
-        for (const auto& [name, angle] : base) {
-          for (const double sign : {-1.0, 1.0}) {
-            geometry::AxisPositions axes = base;
-            axes[name] = angle + sign * fraction * step;
-            Candidate n;
-            if (!MakeCandidate(rig, axes, options, objective, &n)) continue;
-            const double g = objective.Gain(n.elements);
-            if (g > best_gain + 1e-9) replacement = std::move(n), best_gain = g;
-          }
-        }
-      }
+      RefineAmongNeighbours(
+          rig, options, objective, nullptr, step,
+          [&](const Candidate& c) { return objective.Gain(c.elements); }, &replacement, &best_gain);
       if (best_gain > current + 1e-9) {
         slot = std::move(replacement);
         changed = true;
