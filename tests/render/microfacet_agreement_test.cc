@@ -16,9 +16,15 @@
 #include "render/gl_context.h"
 #include "render/gpu_material.h"
 #include "render/material_probe.h"
+#include "tests/render/direction_grid.h"
 
 namespace brdfrig::render {
 namespace {
+
+using testing::Agreement;
+using testing::CompareOnGrid;
+using testing::DirectionGrid;
+using testing::MakeGrid;
 
 constexpr double kDeg = M_PI / 180;
 
@@ -27,96 +33,12 @@ constexpr double kDeg = M_PI / 180;
 constexpr double kTolerance = 1e-4;
 constexpr double kFloor = 1e-4;
 
-Eigen::Vector3d Direction(double theta, double phi) {
-  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
-}
-
-struct DirectionGrid {
-  std::vector<Eigen::Vector3f> light, view;  // in the frame where the normal is +z
-  void Add(const Eigen::Vector3d& l, const Eigen::Vector3d& v) {
-    light.push_back(l.cast<float>());
-    view.push_back(v.cast<float>());
-  }
-};
-
-DirectionGrid MakeGrid(bool horizon) {
-  DirectionGrid grid;
-  // Angles from 0 to 89.9°, denser towards grazing.
-  const int n_theta = 48, n_phi = 25;
-  std::vector<double> thetas;
-  for (int i = 0; i < n_theta; ++i) {
-    const double u = static_cast<double>(i) / (n_theta - 1);
-    thetas.push_back((1 - (1 - u) * (1 - u)) * 89.9 * kDeg);
-  }
-  for (double ti : thetas) {
-    const Eigen::Vector3d l = Direction(ti, 0.3);
-    for (double to : thetas) {
-      for (int k = 0; k < n_phi; ++k) grid.Add(l, Direction(to, 0.3 + M_PI * k / (n_phi - 1)));
-    }
-    // The exact mirror direction (h = n bit for bit) and its neighbourhood.
-    const Eigen::Vector3d mirror(-l.x(), -l.y(), l.z());
-    grid.Add(l, mirror);
-    for (double d : {1e-5, 1e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1}) {
-      const double to = std::min(ti + d, 89.9 * kDeg);
-      grid.Add(l, Direction(to, 0.3 + M_PI));
-      grid.Add(l, Direction(ti, 0.3 + M_PI + d));
-    }
-  }
-  // A hair above the horizon (cos 1e-6 and 1e-20): finite, as on the CPU.
-  for (double z : {1e-6, 1e-20}) {
-    if (!horizon) break;
-    const Eigen::Vector3d l = Eigen::Vector3d(1, 0, z).normalized();
-    for (double to : thetas) {
-      grid.Add(l, Direction(to, M_PI));
-      grid.Add(Direction(to, 0.5), l);
-    }
-  }
-  return grid;
-}
-
-struct Agreement {
-  double max_relative = 0;
-  Eigen::Vector3d light_at = Eigen::Vector3d::Zero(), view_at = Eigen::Vector3d::Zero();
-  int checked = 0;
-};
-
-// Max over the grid of |gpu − cpu| / max(|cpu|, kFloor), with the grid rotated so that the
-// normal is `normal`. The CPU evaluates at exactly the float vectors the GPU saw.
+// |gpu − cpu| / max(|cpu|, kFloor) over the grid rotated to `normal`.
 Agreement Compare(const brdf::MicrofacetModel& model, const DirectionGrid& grid,
                   const Eigen::Vector3d& normal = Eigen::Vector3d::UnitZ()) {
-  const Eigen::Quaterniond rotation =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), normal);
-  const Eigen::Vector3f n = normal.cast<float>();
-  const int width = 512;
-  const int count = static_cast<int>(grid.light.size());
-  const int height = (count + width - 1) / width;
-  cv::Mat light(height, width, CV_32FC3, cv::Scalar(0, 0, 1)),
-      view(height, width, CV_32FC3, cv::Scalar(0, 0, 1));
-  std::vector<Eigen::Vector3f> l_used(count), v_used(count);
-  for (int i = 0; i < count; ++i) {
-    l_used[i] = (rotation * grid.light[i].cast<double>()).cast<float>();
-    v_used[i] = (rotation * grid.view[i].cast<double>()).cast<float>();
-    light.at<cv::Vec3f>(i / width, i % width) = {l_used[i].x(), l_used[i].y(), l_used[i].z()};
-    view.at<cv::Vec3f>(i / width, i % width) = {v_used[i].x(), v_used[i].y(), v_used[i].z()};
-  }
   const std::unique_ptr<GpuMaterial> material = GpuMaterial::Microfacet(model);
-  const cv::Mat gpu = EvalMaterialOnGpu(*material, light, view, n);
-  Agreement worst;
-  for (int i = 0; i < count; ++i) {
-    const brdf::Rgb cpu =
-        model.Eval(l_used[i].cast<double>(), v_used[i].cast<double>(), n.cast<double>());
-    const cv::Vec3f g = gpu.at<cv::Vec3f>(i / width, i % width);
-    for (int c = 0; c < 3; ++c) {
-      const double rel = std::abs(g[c] - cpu[c]) / std::max(std::abs(cpu[c]), kFloor);
-      if (!(rel <= worst.max_relative)) {
-        worst.max_relative = rel;
-        worst.light_at = grid.light[i].cast<double>();
-        worst.view_at = grid.view[i].cast<double>();
-      }
-      ++worst.checked;
-    }
-  }
-  return worst;
+  return CompareOnGrid(*material, model, grid, normal,
+                       [](const Eigen::Vector3d&, const Eigen::Vector3d&) { return kFloor; });
 }
 
 double AngleDeg(const Eigen::Vector3d& a) { return std::acos(std::clamp(a.z(), -1.0, 1.0)) / kDeg; }
