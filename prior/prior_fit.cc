@@ -59,27 +59,23 @@ PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observatio
     const double rms = std::sqrt(w.dot(residual.cwiseAbs2()) / w.sum());
     result.misfit = std::max(result.misfit, rms);
     result.table[ch].assign(table.data(), table.data() + table.size());
-    if (!options.correct) continue;
-    std::vector<double> num(grid.Cells(), 0.0), den(grid.Cells(), 0.0);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      for (int j = 0; j < 8; ++j) {
-        const double sw = w[i] * stencils[i].weight[j];
-        num[stencils[i].node[j]] += sw * residual[i];
-        den[stencils[i].node[j]] += sw;
+    if (options.correct) {
+      std::vector<double> num(grid.Cells(), 0.0), den(grid.Cells(), 0.0);
+      for (Eigen::Index i = 0; i < n; ++i) {
+        for (int j = 0; j < 8; ++j) {
+          const double sw = w[i] * stencils[i].weight[j];
+          num[stencils[i].node[j]] += sw * residual[i];
+          den[stencils[i].node[j]] += sw;
+        }
+      }
+      for (int node = 0; node < grid.Cells(); ++node) {
+        if (den[node] > 0) {
+          result.table[ch][node] += num[node] / (den[node] + prior.correction_weight);
+        }
       }
     }
-    const double floor = std::log(grid.epsilon);
-    for (int node = 0; node < grid.Cells(); ++node) {
-      double& value = result.table[ch][node];
-      if (den[node] > 0) value += num[node] / (den[node] + prior.correction_weight);
-      value = std::clamp(value, floor, 80.0);  // the table's valid range (rusinkiewicz_table.h)
-    }
-  }
-  if (!options.correct) {
-    const double floor = std::log(grid.epsilon);
-    for (auto& channel : result.table) {
-      for (double& value : channel) value = std::clamp(value, floor, 80.0);
-    }
+    // The table's valid range (rusinkiewicz_table.h).
+    for (double& value : result.table[ch]) value = std::clamp(value, std::log(grid.epsilon), 80.0);
   }
   result.outside_prior = result.misfit > options.misfit_limit;
   return result;
