@@ -39,6 +39,16 @@ elseif(BRDFRIG_SANITIZE)
                                                    -fno-omit-frame-pointer -O1)
   target_link_options(brdfrig_options INTERFACE -fsanitize=address,undefined)
 endif()
+# Eigen picks its allocator per translation unit: under AddressSanitizer (__SANITIZE_ADDRESS__)
+# it pads and offsets every heap block itself, elsewhere it trusts glibc's 16-byte-aligned
+# malloc. Debian's Ceres is a static library built without ASan, so one program would hold both
+# kinds of Eigen::Matrix::resize, and the linker keeps whichever it meets first: a matrix
+# allocated by Ceres's copy and freed by ours is a heap-buffer-overflow (seen in the designer's
+# K × K matrices). Every sanitized unit uses glibc's alignment too, as the uninstrumented Ceres
+# does; Eigen still asserts that each block it gets is 16-byte aligned.
+if(BRDFRIG_SANITIZE AND NOT BRDFRIG_TSAN)
+  target_compile_definitions(brdfrig_options INTERFACE EIGEN_MALLOC_ALREADY_ALIGNED=1)
+endif()
 # GCC's -Wmaybe-uninitialized is unreliable with sanitizer instrumentation (false positives
 # inside libstdc++'s std::regex/std::function at -O1); release builds keep the warning.
 if(BRDFRIG_SANITIZE AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
