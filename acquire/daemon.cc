@@ -114,6 +114,7 @@ Daemon::~Daemon() {
   }
   runner_.join();
   // The runner is gone: nothing adds a hand-off any more.
+  stop_hand_offs_ = true;
   for (std::thread& hand_off : hand_offs_) hand_off.join();
   Log("stopped");
 }
@@ -201,7 +202,7 @@ void Daemon::StartHandOff(const std::string& name) {
   hand_offs_.emplace_back([this, name] {
     std::string line;
     try {
-      line = RunHandOff(config_.hand_off, config_.data_dir / name, name);
+      line = RunHandOff(config_.hand_off, config_.data_dir / name, name, &stop_hand_offs_);
     } catch (const std::exception& e) {
       line = "session " + name + " could not be handed off: " + e.what();
     }

@@ -19,6 +19,7 @@
 // Logs go to stderr, one line per event (journald adds the time).
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -43,7 +44,8 @@ class Daemon {
   // the holder, before any device is opened), opens the rig, scans data_dir, starts listening and
   // the runner. Throws brdfrig::Error.
   explicit Daemon(DaemonConfig config);
-  // Aborts a running session ("daemon stopped"; resumable), stops listening, removes the socket.
+  // Aborts a running session ("daemon stopped"; resumable), ends running hand-offs (logged with
+  // their command), stops listening, removes the socket.
   ~Daemon();
   Daemon(const Daemon&) = delete;
   Daemon& operator=(const Daemon&) = delete;
@@ -89,6 +91,9 @@ class Daemon {
   std::thread runner_;
   std::vector<std::thread> hand_offs_;  // under mutex_; joined on destruction
   int hand_offs_running_ = 0;           // under mutex_
+  // Set on destruction: hand-offs still running are ended, so that stopping never waits for
+  // a lab's command (acquire/hand_off.h).
+  std::atomic<bool> stop_hand_offs_{false};
   std::unique_ptr<HttpServer> unix_server_;
   std::unique_ptr<HttpServer> tcp_server_;
   int tcp_port_ = 0;

@@ -75,6 +75,9 @@ DaemonConfig LoadDaemonConfig(const fs::path& file) {
     for (const YamlNode& argument : command.Elements()) {
       config.hand_off.command.push_back(argument.AsString());
     }
+    if (auto timeout = hand_off->Optional("timeout_s")) {
+      config.hand_off.timeout_s = timeout->InRange(timeout->AsDouble(), 0.1, 86400);
+    }
     try {
       config.hand_off.Validate();
     } catch (const OptionsError& e) {

@@ -6,8 +6,8 @@
 //   resume_interrupted: false         # on start, resume sessions a crash interrupted
 //   tcp: {port: 8765, token_file: token}  # optional loopback listener, bearer token required
 //   retry: {max_attempts: 5, initial_backoff_s: 0.5, max_backoff_s: 10}
-//   hand_off: {command: [/usr/local/bin/brdfrig, batch, prepare, "{session}", ...]}
-//                                     # run after each complete session (acquire/hand_off.h)
+//   hand_off: {command: [/usr/local/bin/brdfrig, batch, prepare, "{session}", ...],
+//              timeout_s: 600}        # run after each complete session (acquire/hand_off.h)
 #pragma once
 
 #include <filesystem>

@@ -160,6 +160,69 @@ TEST(AcquireCliTest, DaemonAndItsClientCommands) {
   fs::remove_all(socket_dir);
 }
 
+std::string FileText(const fs::path& file) {
+  std::ifstream in(file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Exit status of `pid` if it ends within `seconds`; else kills it and returns -2.
+int WaitAtMost(pid_t pid, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < end) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -2;
+}
+
+// Issue 25, finding 10: `{name}` was replaced again inside the expanded `{session}` (a data_dir
+// containing "{name}" gave the hand-off a directory that does not exist), and a hand-off that
+// exited leaving a child on its stdout kept the daemon waiting: its outcome was never logged
+// and SIGTERM waited for the child (`sleep infinity &`: forever).
+TEST(AcquireCliTest, DaemonHandOffGetsItsSessionAndNeitherWaitsForNorLeavesItsChildren) {
+  const auto rig = testing::MakeTestRig("cli_hand_off");
+  char socket_dir[] = "/tmp/brdfrig-hand-XXXXXX";  // sun_path holds 107 bytes
+  ASSERT_NE(mkdtemp(socket_dir), nullptr);
+  const fs::path socket = fs::path(socket_dir) / "d.sock";
+  const fs::path child_pid = rig.dir / "child.pid";
+  std::ofstream(rig.dir / "daemon.yaml")
+      << "data_dir: \"data-{name}\"\nrig: rig.yaml\nsocket: " << socket.string() << "\n"
+      << "hand_off:\n  command: [/bin/sh, -c, 'sleep 30 & echo $! > \"$2\"; test -d \"$1\"', sh, "
+         "\"{session}\", "
+      << child_pid.string() << "]\n  timeout_s: 20\n";
+  const fs::path log = rig.dir / "daemon.log";
+  const pid_t daemon = Spawn({"daemon", "--config", (rig.dir / "daemon.yaml").string()}, log);
+  for (int i = 0; i < 500 && !fs::exists(socket); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const Result submitted =
+      Brdfrig("submit --socket " + Q(socket) + " --name d1 --follow " + Q(rig.plan_file));
+  EXPECT_EQ(submitted.status, 0) << submitted.output;
+  for (int i = 0; i < 500 && FileText(log).find("handed off") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const std::string logged = FileText(log);
+  EXPECT_NE(logged.find("session d1 handed off: /bin/sh -c"), std::string::npos) << logged;
+  // test -d "$1" exits 0: the session directory it got exists.
+  EXPECT_NE(logged.find((rig.dir / "data-{name}" / "d1").string()), std::string::npos) << logged;
+  EXPECT_NE(logged.find(" exited 0; ended 1 process(es)"), std::string::npos) << logged;
+  const auto stop = std::chrono::steady_clock::now();
+  kill(daemon, SIGTERM);
+  EXPECT_EQ(WaitAtMost(daemon, 10), 0) << FileText(log);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - stop).count(), 5);
+  const std::string child = FileText(child_pid);
+  ASSERT_FALSE(child.empty());
+  const int pid = std::stoi(child);
+  const std::string stat = FileText("/proc/" + std::to_string(pid) + "/stat");
+  const bool running = !stat.empty() && stat.find(") Z") == std::string::npos;
+  EXPECT_FALSE(running) << "the hand-off's child " << pid << " outlived it: " << stat;
+  if (running) kill(pid, SIGKILL);
+  fs::remove_all(socket_dir);
+}
+
 // Issue 15, finding 1: two daemons with different sockets, or a daemon and a foreground
 // capture, drove the same rig at once. Whoever comes second must fail at once, name the
 // holder, and neither open a device nor create anything.

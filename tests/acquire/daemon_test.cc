@@ -179,6 +179,23 @@ TEST_F(DaemonTest, CompleteSessionsAreHandedToTheConfiguredCommandAbortedOnesAre
             fs::absolute(config_.data_dir / "first").lexically_normal().string() + " first\n");
 }
 
+// Issue 25, finding 10: stopping the daemon waited for a running hand-off however long it took.
+TEST_F(DaemonTest, StoppingTheDaemonEndsARunningHandOff) {
+  const fs::path started = rig_.dir / "hand_off_started";
+  config_.hand_off.command = {"/bin/sh",        "-c",    "touch \"$1\"; sleep 20", "sh",
+                              started.string(), "{name}"};
+  auto daemon = std::make_unique<Daemon>(config_);
+  Client().Submit("first", testing::SmallPlanYaml());
+  for (int i = 0; i < 1000 && !fs::exists(started); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(fs::exists(started)) << "the hand-off never ran";
+  const auto start = std::chrono::steady_clock::now();
+  daemon.reset();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+            kHandOffGraceS + 2);
+}
+
 TEST(DaemonConfigTest, HandOffIsReadFromDaemonYamlAndMustNameAnAbsoluteProgramAndTheSession) {
   const fs::path dir = fs::temp_directory_path() / "daemon_config_hand_off";
   fs::create_directories(dir);
@@ -198,6 +215,13 @@ TEST(DaemonConfigTest, HandOffIsReadFromDaemonYamlAndMustNameAnAbsoluteProgramAn
   }
   std::ofstream(dir / "nameless.yaml") << common << "hand_off: {command: [/bin/true]}\n";
   EXPECT_THROW(LoadDaemonConfig(dir / "nameless.yaml"), FileError);
+  EXPECT_EQ(config.hand_off.timeout_s, 600);
+  std::ofstream(dir / "timeout.yaml")
+      << common << "hand_off: {command: [/bin/true, \"{name}\"], timeout_s: 5}\n";
+  EXPECT_EQ(LoadDaemonConfig(dir / "timeout.yaml").hand_off.timeout_s, 5);
+  std::ofstream(dir / "no_timeout.yaml")
+      << common << "hand_off: {command: [/bin/true, \"{name}\"], timeout_s: 0}\n";
+  EXPECT_THROW(LoadDaemonConfig(dir / "no_timeout.yaml"), FileError);
 }
 
 TEST_F(DaemonTest, MalformedRequestsGetA4xxWithAReasonAndWriteNothing) {
