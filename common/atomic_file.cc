@@ -1,6 +1,8 @@
 #include "common/atomic_file.h"
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -8,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -21,7 +24,59 @@ namespace {
   throw OutputError(what + " '" + path.string() + "': " + std::strerror(err));
 }
 
+// "TARGET.tmp-PID" (before temporaries had a random part) or "TARGET.tmp-PID-XXXXXXXX": the
+// writer's pid, or 0 when `name` is not a temporary of `target_name`.
+long TemporaryWriter(const std::string& name, const std::string& target_name) {
+  const std::string prefix = target_name + ".tmp-";
+  if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return 0;
+  const std::string rest = name.substr(prefix.size());
+  const std::size_t dash = rest.find('-');
+  const std::string pid = rest.substr(0, dash);
+  if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos) {
+    return 0;
+  }
+  if (dash != std::string::npos) {
+    const std::string random = rest.substr(dash + 1);
+    if (random.size() != 8 || random.find_first_not_of("0123456789abcdef") != std::string::npos) {
+      return 0;
+    }
+  }
+  return std::stol(pid);
+}
+
 }  // namespace
+
+int RemoveStaleTemporaries(const std::filesystem::path& target) {
+  const std::filesystem::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  const std::string target_name = target.filename().string();
+  const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd < 0) return 0;
+  DIR* entries = ::fdopendir(dir_fd);
+  if (entries == nullptr) {
+    ::close(dir_fd);
+    return 0;
+  }
+  int removed = 0;
+  const std::time_t now = std::time(nullptr);
+  while (const dirent* entry = ::readdir(entries)) {
+    const long pid = TemporaryWriter(entry->d_name, target_name);
+    if (pid <= 0) continue;
+    struct stat info {};
+    // Never followed: a symlink or anything else that is not a plain file of ours stays.
+    if (::fstatat(dir_fd, entry->d_name, &info, AT_SYMLINK_NOFOLLOW) != 0 ||
+        !S_ISREG(info.st_mode) || info.st_uid != ::geteuid()) {
+      continue;
+    }
+    // A writer still running keeps its temporary; so does one written lately, which may be
+    // another machine's (a shared file system) or another pid namespace's, whose pids say
+    // nothing here.
+    const bool running = ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+    if (running || now - info.st_mtime < kStaleTemporaryAgeS) continue;
+    removed += ::unlinkat(dir_fd, entry->d_name, 0) == 0;
+  }
+  ::closedir(entries);
+  return removed;
+}
 
 void SyncDirectory(const std::filesystem::path& dir) {
   const std::filesystem::path target = dir.empty() ? "." : dir;
@@ -35,6 +90,8 @@ void SyncDirectory(const std::filesystem::path& dir) {
 
 std::filesystem::path WriteTemporaryAndSync(const std::filesystem::path& target,
                                             std::span<const std::byte> bytes) {
+  // Temporaries a killed writer left beside this output go first: nothing else ever would.
+  RemoveStaleTemporaries(target);
   // A fresh name each try, created only if nothing (not even a dangling symlink) is there.
   std::random_device random;
   std::filesystem::path path;

@@ -25,6 +25,15 @@ std::filesystem::path WriteTemporaryAndSync(const std::filesystem::path& target,
                                             std::span<const std::byte> bytes);
 void RenameAndSync(const std::filesystem::path& from, const std::filesystem::path& to);
 
+// A writer killed between the halves (SIGKILL, a crash, a power cut) leaves its temporary.
+// Each new temporary of `target` first removes those of earlier writers: entries of the
+// target's directory named "NAME.tmp-PID" or "NAME.tmp-PID-XXXXXXXX" (this file's patterns,
+// for this NAME only) that are regular files of this user, not symlinks (never followed),
+// whose PID runs no process here and which nobody wrote for kStaleTemporaryAgeS. Returns how
+// many it removed; errors leave the entry alone.
+inline constexpr long kStaleTemporaryAgeS = 600;
+int RemoveStaleTemporaries(const std::filesystem::path& target);
+
 // Inputs a user or client feeds are text files of modest size: the cap keeps a mistaken or
 // hostile path (a disk image, /dev/zero) from eating the memory.
 inline constexpr std::size_t kMaxInputFileBytes = std::size_t{64} << 20;  // 64 MiB

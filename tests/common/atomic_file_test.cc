@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <span>
 
 #include "common/error.h"
@@ -69,6 +72,55 @@ TEST(AtomicFileTest, TemporariesAreFreshFilesBesideTheTarget) {
   RenameAndSync(a, dir / "t.json");
   EXPECT_EQ(ReadFileToString(dir / "t.json"), "x");
   EXPECT_EQ(ReadFileToString(b), "x");
+  fs::remove_all(dir);
+}
+
+// Issue 25, finding 11: a writer killed between writing and renaming left its temporary
+// beside the output forever.
+TEST(AtomicFileTest, StaleTemporariesOfEndedWritersAreRemovedAndNothingElse) {
+  const fs::path dir = FreshDir("atomic_stale");
+  const pid_t ended = ::fork();
+  if (ended == 0) ::_exit(0);
+  ::waitpid(ended, nullptr, 0);
+  const std::string dead = std::to_string(ended), alive = std::to_string(::getpid());
+  const auto old = fs::file_time_type::clock::now() - std::chrono::hours(1);
+  auto make = [&](const std::string& name, bool is_old) {
+    std::ofstream(dir / name) << "torn";
+    if (is_old) fs::last_write_time(dir / name, old);
+    return dir / name;
+  };
+  const std::vector<fs::path> removed = {make("m.json.tmp-" + dead, true),
+                                         make("m.json.tmp-" + dead + "-0123abcd", true)};
+  const std::vector<fs::path> kept = {
+      make("m.json.tmp-" + alive + "-0123abcd", true),  // its writer runs
+      make("m.json.tmp-" + dead + "-4567abcd", false),  // written lately: maybe another host's
+      make("n.json.tmp-" + dead, true),                 // another output's
+      make("xm.json.tmp-" + dead, true),
+      make("m.json.tmp-" + dead + "-0123ABCD", true),  // not this code's pattern
+      make("m.json.tmp-" + dead + "-0123abc", true),
+      make("m.json.tmp-" + dead + "x", true),
+      make("m.json.tmp-", true),
+      make("m.json.tmp-0", true),
+      make("m.json", true)};
+  const fs::path victim = make("victim", true);
+  const fs::path link = dir / ("m.json.tmp-" + dead + "-89abcdef");
+  fs::create_symlink(victim, link);
+  const fs::path directory = dir / ("m.json.tmp-" + dead + "-fedcba98");
+  fs::create_directory(directory);
+  fs::last_write_time(directory, old);
+
+  EXPECT_EQ(RemoveStaleTemporaries(dir / "m.json"), 2);
+  for (const fs::path& p : removed) EXPECT_FALSE(fs::exists(p)) << p;
+  for (const fs::path& p : kept) EXPECT_TRUE(fs::exists(p)) << p;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_TRUE(fs::is_directory(directory));
+  EXPECT_EQ(ReadFileToString(victim), "torn");
+
+  // Every atomic write does it before creating its own temporary.
+  const fs::path again = make("m.json.tmp-" + dead + "-00000000", true);
+  WriteFileAtomically(dir / "m.json", std::string_view("new"));
+  EXPECT_FALSE(fs::exists(again));
+  EXPECT_EQ(ReadFileToString(dir / "m.json"), "new");
   fs::remove_all(dir);
 }
 
