@@ -1,5 +1,6 @@
 #include "batch/collect.h"
 
+#include <cstdio>
 #include <sstream>
 
 #include "batch/manifest.h"
@@ -10,6 +11,54 @@ namespace brdfrig::batch {
 
 namespace fs = std::filesystem;
 using Outcome = CollectedItem::Outcome;
+
+namespace {
+
+bool IsControl(char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }
+
+// A capture's name may hold any byte but '/' and NUL: one with a newline must not split its
+// report line. Such a path is shown as bash's $'...' (pasteable); others as they are.
+std::string DisplayPath(const std::string& path) {
+  bool plain = true;
+  for (char c : path) plain = plain && !IsControl(c);
+  if (plain) return path;
+  std::string quoted = "$'";
+  for (char c : path) {
+    if (c == '\n') {
+      quoted += "\\n";
+    } else if (c == '\t') {
+      quoted += "\\t";
+    } else if (c == '\\' || c == '\'') {
+      quoted += std::string("\\") + c;
+    } else if (IsControl(c)) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
+      quoted += escaped;
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "'";
+}
+
+// A message (which may quote such a path) on one line.
+std::string OneLine(const std::string& text) {
+  std::string line;
+  for (char c : text) {
+    if (c == '\n') {
+      line += "\\n";
+    } else if (IsControl(c)) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
+      line += escaped;
+    } else {
+      line += c;
+    }
+  }
+  return line;
+}
+
+}  // namespace
 
 std::string OutcomeName(Outcome outcome) {
   switch (outcome) {
@@ -56,8 +105,8 @@ std::string CollectReport::Summary() const {
   std::ostringstream s;
   for (const CollectedItem& item : items) {
     if (item.outcome == Outcome::kSucceeded) continue;
-    s << OutcomeName(item.outcome) << "  " << item.index << " " << item.capture.string() << ": "
-      << item.why << "\n";
+    s << OutcomeName(item.outcome) << "  " << item.index << " "
+      << DisplayPath(item.capture.string()) << ": " << OneLine(item.why) << "\n";
   }
   s << items.size() << " item(s): " << Count(Outcome::kSucceeded) << " succeeded, "
     << Count(Outcome::kPartial) << " partial, " << Count(Outcome::kFailed) << " failed, "
@@ -85,16 +134,23 @@ CollectReport Collect(const JobDir& dir, const SchedulerView& scheduler) {
       item.outcome = Outcome::kActive;
       item.why =
           state->second.state + " in job " + state->second.job_id + "_" + std::to_string(m.index);
-    } else if (fs::exists(dir.result(m.index))) {
-      const TaskResult result = ReadTaskResult(dir.result(m.index));
-      item.seconds = result.item.seconds;
-      item.outcome = result.exit_status == 0   ? Outcome::kSucceeded
-                     : result.exit_status == 3 ? Outcome::kPartial
-                                               : Outcome::kFailed;
-      item.why = result.item.message;
-      for (const std::string& d : result.item.dropped) item.why += "; dropped " + d;
-      for (const std::string& d : result.item.degraded) item.why += "; degraded " + d;
-      if (!result.job.empty()) item.why += " (" + result.job + " on " + result.host + ")";
+    } else if (std::error_code error; fs::exists(fs::symlink_status(dir.result(m.index), error))) {
+      // A result that cannot be read (torn by hand, a FIFO, another item's) is this item's
+      // failure, to be run again; the other items are still reported.
+      try {
+        const TaskResult result = ReadTaskResult(dir.result(m.index));
+        item.seconds = result.item.seconds;
+        item.outcome = result.exit_status == 0   ? Outcome::kSucceeded
+                       : result.exit_status == 3 ? Outcome::kPartial
+                                                 : Outcome::kFailed;
+        item.why = result.item.message;
+        for (const std::string& d : result.item.dropped) item.why += "; dropped " + d;
+        for (const std::string& d : result.item.degraded) item.why += "; degraded " + d;
+        if (!result.job.empty()) item.why += " (" + result.job + " on " + result.host + ")";
+      } catch (const Error& e) {
+        item.outcome = Outcome::kFailed;
+        item.why = std::string("its result cannot be read: ") + e.what();
+      }
     } else if (state != scheduler.tasks.end()) {
       item.outcome = Outcome::kNoResult;
       item.why = "job " + state->second.job_id + "_" + std::to_string(m.index) + " ended " +

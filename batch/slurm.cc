@@ -1,5 +1,8 @@
 #include "batch/slurm.h"
 
+#include <signal.h>
+
+#include <array>
 #include <sstream>
 
 #include "batch/array_spec.h"
@@ -21,12 +24,46 @@ std::string JobIdList(const std::vector<Submission>& submissions) {
   return ids;
 }
 
+volatile sig_atomic_t deferred_signal = 0;
+
+void RememberSignal(int sig) { deferred_signal = sig; }
+
+// From the moment sbatch starts until its job id is in submissions.txt, SIGINT, SIGTERM and
+// SIGHUP are held back and acted on afterwards: a job the scheduler accepted but nobody
+// recorded would be submitted a second time by the next `collect --resubmit`. sbatch itself
+// starts with the default actions (exec resets handled signals). Signals the caller ignores
+// stay ignored.
+class DeferTerminationSignals {
+ public:
+  DeferTerminationSignals() {
+    deferred_signal = 0;
+    struct sigaction remember {};
+    remember.sa_handler = RememberSignal;
+    sigemptyset(&remember.sa_mask);
+    for (std::size_t i = 0; i < kSignals.size(); ++i) {
+      ::sigaction(kSignals[i], nullptr, &old_[i]);
+      if (old_[i].sa_handler != SIG_IGN) ::sigaction(kSignals[i], &remember, nullptr);
+    }
+  }
+  ~DeferTerminationSignals() {
+    for (std::size_t i = 0; i < kSignals.size(); ++i) ::sigaction(kSignals[i], &old_[i], nullptr);
+    if (deferred_signal != 0) ::raise(deferred_signal);
+  }
+  DeferTerminationSignals(const DeferTerminationSignals&) = delete;
+  DeferTerminationSignals& operator=(const DeferTerminationSignals&) = delete;
+
+ private:
+  static constexpr std::array<int, 3> kSignals = {SIGINT, SIGTERM, SIGHUP};
+  std::array<struct sigaction, 3> old_{};
+};
+
 }  // namespace
 
 Submission SubmitArray(const JobDir& dir, const std::vector<int>& indices, int throttle) {
   const std::string spec = ArraySpec(indices, throttle);
   const std::vector<std::string> argv = {"sbatch", "--parsable", "--array=" + spec,
                                          dir.script().string()};
+  const DeferTerminationSignals defer;
   const ProcessResult run = RunProcess(argv);
   if (!run.ok()) {
     throw Error(ShellQuoted(argv) + " failed (exit status " + std::to_string(run.exit_status) +

@@ -11,7 +11,8 @@
 namespace brdfrig::batch {
 
 // `sbatch --parsable --array=<spec> <dir's script>`; records the submission in
-// submissions.txt. Throws Error with sbatch's own message when it refuses.
+// submissions.txt. Throws Error with sbatch's own message when it refuses. SIGINT, SIGTERM and
+// SIGHUP arriving meanwhile take effect once the submission is recorded (or refused).
 Submission SubmitArray(const JobDir& dir, const std::vector<int>& indices, int throttle);
 
 // What the scheduler says about one array task.
