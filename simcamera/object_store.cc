@@ -7,6 +7,7 @@ namespace brdfrig::simcamera {
 std::uint32_t ObjectStore::Add(StoredObject object) {
   object.handle = next_handle_++;
   const std::uint32_t handle = object.handle;
+  bytes_used_ += object.bytes.size();
   objects_[handle] = std::move(object);
   return handle;
 }
@@ -16,7 +17,13 @@ const StoredObject* ObjectStore::Find(std::uint32_t handle) const {
   return it == objects_.end() ? nullptr : &it->second;
 }
 
-bool ObjectStore::Remove(std::uint32_t handle) { return objects_.erase(handle) > 0; }
+bool ObjectStore::Remove(std::uint32_t handle) {
+  const auto it = objects_.find(handle);
+  if (it == objects_.end()) return false;
+  bytes_used_ -= it->second.bytes.size();
+  objects_.erase(it);
+  return true;
+}
 
 std::vector<std::uint32_t> ObjectStore::Handles(std::uint16_t format) const {
   std::vector<std::uint32_t> out;
@@ -26,14 +33,10 @@ std::vector<std::uint32_t> ObjectStore::Handles(std::uint16_t format) const {
   return out;
 }
 
-std::uint64_t ObjectStore::bytes_used() const {
-  std::uint64_t total = 0;
-  for (const auto& [handle, object] : objects_) total += object.bytes.size();
-  return total;
-}
-
-bool ObjectStore::Fits(std::size_t more) const {
-  return capacity_files_ < 0 || objects_.size() + more <= static_cast<std::size_t>(capacity_files_);
+bool ObjectStore::Fits(std::size_t more_files, std::uint64_t more_bytes) const {
+  if (bytes_used_ + more_bytes > capacity_bytes_) return false;
+  return capacity_files_ < 0 ||
+         objects_.size() + more_files <= static_cast<std::size_t>(capacity_files_);
 }
 
 std::string ObjectStore::NextStem() {

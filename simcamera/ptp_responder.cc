@@ -109,7 +109,7 @@ PtpReply PtpResponder::Handle(const OperationRequest& request,
     case op::kGetStorageInfo: {
       if (param(0) != kStorageId) return Code(rc::kInvalidStorageId);
       StorageDescription s;
-      s.capacity_bytes = 32ull << 30;
+      s.capacity_bytes = store_.capacity_bytes();
       s.free_bytes =
           s.capacity_bytes - std::min<std::uint64_t>(s.capacity_bytes, store_.bytes_used());
       const int capacity = store_.capacity_files();
@@ -229,8 +229,9 @@ PtpReply PtpResponder::SetProperty(std::uint16_t code, const std::vector<std::ui
 }
 
 PtpReply PtpResponder::InitiateCapture() {
-  if (!store_.Fits(static_cast<std::size_t>(offer_.files_per_shot))) {
-    // A body with a full card refuses the shot and says why on the event channel too.
+  if (!store_.Fits(static_cast<std::size_t>(offer_.files_per_shot), last_shot_bytes_)) {
+    // A body with a full card refuses the shot and says why on the event channel too. The
+    // card's bytes are the camera's memory: it holds at most its capacity plus one shot.
     PtpReply reply = Code(rc::kStoreFull);
     reply.after = [] { return std::vector<PtpEvent>{{event::kStoreFull, {kStorageId}}}; };
     return reply;
@@ -246,7 +247,9 @@ std::vector<PtpEvent> PtpResponder::Shoot() {
   const std::string stem = store_.NextStem();
   const std::string date = CaptureDate();
   std::vector<std::uint32_t> handles;
+  last_shot_bytes_ = 0;
   for (const CapturedFile& f : files) {
+    last_shot_bytes_ += f.bytes.size();
     StoredObject object;
     object.file_name = stem + f.extension;
     object.format = f.format;

@@ -90,6 +90,8 @@ class PtpResponder {
   std::vector<EnumProperty> properties_;
   bool session_open_ = false;
   int captures_ = 0;
+  // The size of the last shot's files: what the next shot is expected to need on the card.
+  std::uint64_t last_shot_bytes_ = 0;
 };
 
 }  // namespace brdfrig::simcamera

@@ -3,19 +3,18 @@
 #include <poll.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
 #include "common/error.h"
+#include "simcamera/packet_stream.h"
 #include "simcamera/ptp_data.h"
 
 namespace brdfrig::simcamera {
 namespace {
 
-constexpr std::uint32_t kHeaderBytes = 8;
-// Larger than any packet this camera accepts (requests, small settings): a bigger length is
-// a desynchronized or hostile stream, not something to allocate.
-constexpr std::uint32_t kMaxIncomingPacket = 1 << 20;
+constexpr std::uint32_t kHeaderBytes = kPacketHeaderBytes;
 
 // 1: data is ready; 0: timeout; -1: error.
 int WaitReadable(int fd, std::chrono::milliseconds timeout) {
@@ -43,6 +42,18 @@ bool ReadExactly(int fd, std::uint8_t* out, std::size_t size, std::chrono::milli
 std::uint32_t Le32(const std::uint8_t* p) {
   return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
          static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
+}
+
+// Writes every byte on a blocking socket; false when the peer is gone (never raises SIGPIPE).
+bool WriteAll(int fd, const std::vector<std::uint8_t>& bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = send(fd, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
 }
 
 Packet Expect(std::optional<Packet> packet, const char* what) {
@@ -77,20 +88,16 @@ std::optional<Packet> ReadPacket(int fd, std::chrono::milliseconds timeout) {
   return packet;
 }
 
-bool WritePacket(int fd, PacketType type, const std::vector<std::uint8_t>& payload) {
+std::vector<std::uint8_t> EncodePacket(PacketType type, const std::vector<std::uint8_t>& payload) {
   PtpWriter w;
   w.U32(static_cast<std::uint32_t>(payload.size() + kHeaderBytes))
       .U32(static_cast<std::uint32_t>(type))
       .Bytes(payload);
-  const std::vector<std::uint8_t>& bytes = w.bytes();
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = send(fd, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
+  return w.Take();
+}
+
+bool WritePacket(int fd, PacketType type, const std::vector<std::uint8_t>& payload) {
+  return WriteAll(fd, EncodePacket(type, payload));
 }
 
 OperationRequest ParseOperationRequest(const Packet& packet) {
@@ -138,53 +145,39 @@ std::vector<std::uint8_t> EventPayload(std::uint16_t code, std::uint32_t transac
   return ResponsePayload(code, transaction, params);  // the same layout
 }
 
-bool WriteDataPhase(int fd, std::uint32_t transaction, const std::vector<std::uint8_t>& data,
-                    std::size_t chunk) {
+std::vector<std::uint8_t> EncodeDataPhase(std::uint32_t transaction,
+                                          const std::vector<std::uint8_t>& data,
+                                          std::size_t chunk) {
   PtpWriter start;
   start.U32(transaction).U64(data.size());
-  if (!WritePacket(fd, PacketType::kStartData, start.bytes())) return false;
+  std::vector<std::uint8_t> out = EncodePacket(PacketType::kStartData, start.bytes());
   std::size_t at = 0;
   do {
     const std::size_t n = std::min(chunk, data.size() - at);
     const bool last = at + n == data.size();
     PtpWriter piece;
-    piece.U32(transaction);
-    std::vector<std::uint8_t> payload = piece.Take();
-    payload.insert(payload.end(), data.begin() + static_cast<std::ptrdiff_t>(at),
-                   data.begin() + static_cast<std::ptrdiff_t>(at + n));
-    if (!WritePacket(fd, last ? PacketType::kEndData : PacketType::kData, payload)) return false;
+    piece.U32(static_cast<std::uint32_t>(n + 4 + kHeaderBytes))
+        .U32(static_cast<std::uint32_t>(last ? PacketType::kEndData : PacketType::kData))
+        .U32(transaction);
+    out.insert(out.end(), piece.bytes().begin(), piece.bytes().end());
+    out.insert(out.end(), data.begin() + static_cast<std::ptrdiff_t>(at),
+               data.begin() + static_cast<std::ptrdiff_t>(at + n));
     at += n;
   } while (at < data.size());
-  return true;
+  return out;
+}
+
+bool WriteDataPhase(int fd, std::uint32_t transaction, const std::vector<std::uint8_t>& data,
+                    std::size_t chunk) {
+  return WriteAll(fd, EncodeDataPhase(transaction, data, chunk));
 }
 
 std::vector<std::uint8_t> ReadDataPhase(int fd, std::uint32_t transaction,
                                         std::chrono::milliseconds timeout) {
-  const Packet start = Expect(ReadPacket(fd, timeout), "start data");
-  if (start.type != PacketType::kStartData) {
-    throw Error("PTP/IP: expected start data, got packet type " +
-                std::to_string(static_cast<std::uint32_t>(start.type)));
+  IncomingDataPhase phase(transaction);
+  while (!phase.Add(Expect(ReadPacket(fd, timeout), "data"))) {
   }
-  PtpReader r(start.payload);
-  if (r.U32() != transaction) throw Error("PTP/IP: start data for another transaction");
-  const std::uint64_t total = r.U64();
-  if (total > kMaxIncomingPacket) throw Error("PTP/IP: data phase too large for this camera");
-  std::vector<std::uint8_t> data;
-  for (;;) {
-    const Packet piece = Expect(ReadPacket(fd, timeout), "data");
-    if (piece.type != PacketType::kData && piece.type != PacketType::kEndData) {
-      throw Error("PTP/IP: expected data, got packet type " +
-                  std::to_string(static_cast<std::uint32_t>(piece.type)));
-    }
-    if (piece.payload.size() < 4) throw Error("PTP/IP: data packet without a transaction id");
-    data.insert(data.end(), piece.payload.begin() + 4, piece.payload.end());
-    if (piece.type == PacketType::kEndData) break;
-  }
-  if (data.size() != total) {
-    throw Error("PTP/IP: data phase announced " + std::to_string(total) + " bytes, got " +
-                std::to_string(data.size()));
-  }
-  return data;
+  return phase.Take();
 }
 
 }  // namespace brdfrig::simcamera

@@ -18,11 +18,16 @@ struct Packet {
   std::vector<std::uint8_t> payload;
 };
 
+// Blocking reads and writes, for initiators (the tests' clients); the server reads through
+// packet_stream.h and writes the Encode... bytes without blocking.
+//
 // Reads one whole packet from a blocking socket. Returns nullopt when the peer closed the
 // connection (or `timeout` passed before the first byte); throws brdfrig::Error for a
 // malformed header or a connection that breaks inside a packet.
 std::optional<Packet> ReadPacket(int fd, std::chrono::milliseconds timeout);
 
+// One packet's bytes: header and payload.
+std::vector<std::uint8_t> EncodePacket(PacketType type, const std::vector<std::uint8_t>& payload);
 // Writes one packet; false when the peer is gone (never raises SIGPIPE).
 bool WritePacket(int fd, PacketType type, const std::vector<std::uint8_t>& payload);
 
@@ -48,13 +53,17 @@ std::vector<std::uint8_t> ResponsePayload(std::uint16_t code, std::uint32_t tran
 std::vector<std::uint8_t> EventPayload(std::uint16_t code, std::uint32_t transaction,
                                        const std::vector<std::uint32_t>& params = {});
 
-// Sends a data phase from the camera: start data (total length), then data packets of at
-// most `chunk` bytes, the last one as end data. False when the peer is gone.
+// A data phase from the camera: start data (total length), then data packets of at most
+// `chunk` bytes, the last one as end data.
+std::vector<std::uint8_t> EncodeDataPhase(std::uint32_t transaction,
+                                          const std::vector<std::uint8_t>& data,
+                                          std::size_t chunk = 1 << 16);
+// Sends EncodeDataPhase's bytes. False when the peer is gone.
 bool WriteDataPhase(int fd, std::uint32_t transaction, const std::vector<std::uint8_t>& data,
                     std::size_t chunk = 1 << 16);
 
 // Reads a data phase to the camera (start data, data..., end data) for `transaction`.
-// Throws brdfrig::Error when the stream does not follow the protocol.
+// Throws brdfrig::Error when the stream does not follow the protocol (IncomingDataPhase).
 std::vector<std::uint8_t> ReadDataPhase(int fd, std::uint32_t transaction,
                                         std::chrono::milliseconds timeout);
 

@@ -7,16 +7,24 @@
 // does when the computer reconnects; the card and the settings survive it.
 //
 // Faults are injected for the next operations, to rehearse what the rig sees (docs/rig.md).
-// One thread serves the sockets; the rest of the class may be used from any thread.
+// One thread serves every socket without blocking on any (poll(), one state machine per
+// connection, ptpip_connection.h): a newcomer that is silent, drips bytes, sends garbage or an
+// init request without a GUID, a data phase larger than announced, or a peer that stops
+// reading costs only its own connection, within the limits below; the established initiator
+// keeps being served. The rest of the class may be used from any thread.
 #pragma once
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <mutex>
+#include <random>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "simcamera/ptp_responder.h"
+#include "simcamera/ptpip_connection.h"
 
 namespace brdfrig::simcamera {
 
@@ -42,6 +50,7 @@ struct CameraFaults {
 
 struct CameraServerCounters {
   int connections = 0;  // command connections accepted (initiator sessions)
+  int refused = 0;      // connections closed for breaking the protocol or a limit
   int operations = 0;
   int captures = 0;
   int busy = 0;
@@ -50,10 +59,34 @@ struct CameraServerCounters {
   int vanished = 0;
 };
 
+// How long and how much one connection may cost. Tests set them small.
+struct ConnectionLimits {
+  // A newcomer must send its init request within this time.
+  std::chrono::milliseconds init_timeout{5000};
+  // A packet, once its first byte arrived, and a data phase to the camera must be complete
+  // within this time.
+  std::chrono::milliseconds packet_timeout{5000};
+  // A peer that reads nothing of a queued reply for this long is closed (libgphoto2 waits
+  // 2.5 s for an answer; a live initiator reads at once).
+  std::chrono::milliseconds send_timeout{10000};
+  // Newcomers waiting for their init request at most; one more closes the oldest of them
+  // (a real initiator sends its request at once, so it is never the oldest for long). This
+  // bounds the camera's descriptors whatever the number of clients: newcomers + command +
+  // event connection + the listener.
+  int max_newcomers = 16;
+  // Events queued for an event connection that does not read, at most (bytes).
+  std::size_t max_event_backlog = 1 << 16;
+};
+
 struct CameraServerOptions {
   std::string host = "127.0.0.1";
   int port = 0;  // 0: an ephemeral port (read it back with port())
   CameraOffer offer;
+  ConnectionLimits limits;
+  // What the card holds in memory, in bytes: a capture whose files (estimated by the previous
+  // shot) no longer fit is refused with StoreFull like a full card, so a client that never
+  // deletes cannot grow the camera's memory without bound (docs/rig.md).
+  std::uint64_t card_bytes = kDefaultCardBytes;
 };
 
 class PtpIpCameraServer {
@@ -76,18 +109,30 @@ class PtpIpCameraServer {
   std::size_t files_on_card() const;
 
  private:
+  using Clock = PtpIpConnection::Clock;
   void Listen();
   void Serve();
-  void Accept();
-  void ServeCommand();
-  void CloseConnection();
-  void SendEvents(const std::vector<PtpEvent>& events, std::uint32_t transaction);
+  void ServeOnce();
+  void Accept(Clock::time_point now);
+  void OnPacket(PtpIpConnection& c, Packet packet, Clock::time_point now);
+  void OnNewcomer(PtpIpConnection& c, const Packet& packet, Clock::time_point now);
+  void OnCommand(PtpIpConnection& c, const Packet& packet, Clock::time_point now);
+  void Dispatch(PtpIpConnection& c, const OperationRequest& request,
+                const std::vector<std::uint8_t>& data, Clock::time_point now);
+  void RunAfterWork(PtpIpConnection& c, Clock::time_point now);
+  void CheckDeadlines(PtpIpConnection& c, Clock::time_point now);
+  void Close(PtpIpConnection& c, const std::string& why);
+  void CloseAll();
+  PtpIpConnection* Find(ConnectionRole role);
 
   CameraServerOptions options_;
   int port_ = 0;
   int listener_ = -1;
-  int command_ = -1;
-  int event_ = -1;
+  std::vector<std::unique_ptr<PtpIpConnection>> connections_;  // the server thread's only
+  // Connection numbers are drawn, not counted: an event request must name its command
+  // connection's, and a client cannot guess it to take the initiator's events.
+  std::mt19937 numbers_{std::random_device{}()};
+  Clock::time_point accept_paused_until_{};          // after running out of descriptors
   std::chrono::steady_clock::time_point back_at_{};  // while vanished
   bool vanished_ = false;
 

@@ -98,9 +98,9 @@ void RunSimulatedCamera(const SimCameraOptions& options) {
     const CameraServerCounters c = server.counters();
     std::printf(
         "stopped: %d connections, %d operations, %d captures (%d busy, %d dropped, %d card "
-        "full, %d vanished), %zu files on the card\n",
+        "full, %d vanished), %zu files on the card, %d connections refused\n",
         c.connections, c.operations, c.captures, c.busy, c.dropped, c.store_full, c.vanished,
-        server.files_on_card());
+        server.files_on_card(), c.refused);
   }
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }

@@ -12,6 +12,7 @@
 
 #include "reconstruct/raw_photo.h"
 #include "sim_camera_fixture.h"
+#include "tests/simcamera/ptpip_test_client.h"
 
 namespace brdfrig::simcamera {
 namespace {
@@ -74,6 +75,18 @@ TEST_F(Gphoto2ToolTest, SummaryNamesTheSimulatedBodyAndItsCard) {
       << run.output;
   EXPECT_NE(run.output.find("Capture Formats: JPEG DNG"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("store_00010001"), std::string::npos) << run.output;
+}
+
+// Issue 25, finding 9: one idle connection opened just before made the camera wait 5 s for its
+// first packet, and `gphoto2 --summary` fail with an I/O error (libgphoto2 waits 2.5 s).
+TEST_F(Gphoto2ToolTest, SummaryWorksWhileAnIdleConnectionIsOpen) {
+  const int idle = testing::ConnectTo(server_->port());
+  ASSERT_GE(idle, 0);
+  const ToolRun run = Gphoto2("--summary");
+  close(idle);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("Model: brdfrig PTP/IP simulated camera"), std::string::npos)
+      << run.output;
 }
 
 TEST_F(Gphoto2ToolTest, ListsShutterSpeedIsoAndFNumberAsItsStandardWidgets) {

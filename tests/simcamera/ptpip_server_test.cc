@@ -53,8 +53,11 @@ class PtpIpServerTest : public ::testing::Test {
     EXPECT_TRUE(WritePacket(command, PacketType::kInitCommandRequest, init.bytes()));
     const std::optional<Packet> ack = ReadPacket(command, kWait);
     EXPECT_TRUE(ack && ack->type == PacketType::kInitCommandAck);
+    if (!ack || ack->payload.size() < 4) return {command, -1};
+    // The event connection names the connection number of the command connection's ack.
+    const std::vector<std::uint8_t> number(ack->payload.begin(), ack->payload.begin() + 4);
     const int event = Connect();
-    EXPECT_TRUE(WritePacket(event, PacketType::kInitEventRequest, {1, 0, 0, 0}));
+    EXPECT_TRUE(WritePacket(event, PacketType::kInitEventRequest, number));
     const std::optional<Packet> event_ack = ReadPacket(event, kWait);
     EXPECT_TRUE(event_ack && event_ack->type == PacketType::kInitEventAck);
     return {command, event};
@@ -150,6 +153,19 @@ TEST_F(PtpIpServerTest, MalformedPacketCostsOnlyItsConnection) {
   EXPECT_LE(recv(served.first, &byte, 1, 0), 0);
   const auto next = Handshake();
   EXPECT_EQ(Operation(next.first, op::kOpenSession, 0, {1}), rc::kOk);
+}
+
+TEST_F(PtpIpServerTest, EventRequestNamingAnotherConnectionIsRefused) {
+  const auto [command, event] = Handshake();
+  const int thief = Connect();
+  ASSERT_TRUE(WritePacket(thief, PacketType::kInitEventRequest, {99, 0, 0, 0}));
+  const std::optional<Packet> reply = ReadPacket(thief, kWait);
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(reply->type, PacketType::kInitFail);
+  ASSERT_TRUE(WritePacket(event, PacketType::kProbeRequest, {}));
+  const std::optional<Packet> probe = ReadPacket(event, kWait);
+  ASSERT_TRUE(probe) << "the initiator lost its event connection";
+  EXPECT_EQ(probe->type, PacketType::kProbeResponse);
 }
 
 TEST_F(PtpIpServerTest, ANewInitiatorReplacesTheOldOneAndStartsWithoutASession) {
