@@ -116,12 +116,12 @@ TEST(BadClientsTest, IdleNewcomerDelaysNeitherTheServedInitiatorNorANewOne) {
   }
   // Before the fix the camera waited 5 s for the idle newcomer's first packet, and every
   // operation of the initiator with it (libgphoto2 gives up after 2.5 s).
-  EXPECT_LT(Seconds(Clock::now() - start), 1.0);
+  EXPECT_LT(Seconds(Clock::now() - start), 2.0);
   // The `gphoto2 --summary` case: a new initiator right after an idle connection.
   const Clock::time_point again = Clock::now();
   Initiator next(server.port());
   EXPECT_EQ(Operation(next.command, op::kOpenSession, 0, {1}), rc::kOk);
-  EXPECT_LT(Seconds(Clock::now() - again), 1.0);
+  EXPECT_LT(Seconds(Clock::now() - again), 2.0);
   close(idle);
 }
 
@@ -152,7 +152,8 @@ TEST(BadClientsTest, DrippingNewcomerDoesNotDelayTheInitiatorAndIsClosedAtItsDea
   }
   dripper.join();
   close(drip);
-  EXPECT_LT(worst, 0.25) << "an operation waited for the dripping newcomer";
+  // (Before the fix the camera read the newcomer byte by byte, about 2 s, before anyone else.)
+  EXPECT_LT(worst, 0.5) << "an operation waited for the dripping newcomer";
   EXPECT_TRUE(closed) << "the dripping newcomer was not closed at its init deadline";
   EXPECT_EQ(server.counters().connections, 1);
 }
@@ -313,7 +314,8 @@ TEST(BadClientsTest, ManyIdleSlowAndMisbehavingClientsWhileAnInitiatorIsServed) 
   for (std::thread& t : clients) t.join();
 
   EXPECT_GE(shots, 5);
-  EXPECT_LT(worst, 0.5) << "an operation of the served initiator waited for bad clients";
+  // Well under libgphoto2's 2.5 s, also under the sanitizers on 2 cores.
+  EXPECT_LT(worst, 1.0) << "an operation of the served initiator waited for bad clients";
   EXPECT_EQ(server.counters().connections, 1) << "a bad client replaced the initiator";
   EXPECT_GT(bad_connections.load(), 100);
   EXPECT_TRUE(Eventually([&] { return testing::OpenDescriptors() <= baseline; }))
