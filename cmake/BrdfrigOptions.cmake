@@ -11,34 +11,35 @@ endif()
 if(BRDFRIG_WERROR)
   target_compile_options(brdfrig_options INTERFACE -Werror)
 endif()
-# BRDFRIG_SANITIZE: OFF; ON or address (ASan + UBSan); thread (TSan); fuzzer (libFuzzer, clang).
+# BRDFRIG_SANITIZE: OFF; ON or address (ASan + UBSan); thread (TSan).
 # -O1 throughout as the sanitizers recommend: an unoptimized instrumented build runs the
-# reconstruction suites ~20x slower than release, too slow for a routine run.
+# reconstruction suites ~20x slower than release, too slow for a routine run. Line tables only
+# (-g1): enough for the sanitizers' file:line reports, at a quarter of full debug info's size.
+# An ASan build with clang also carries libFuzzer's coverage instrumentation and builds the
+# fuzz targets (fuzz/): one instrumented build serves the suite and the fuzzers.
 string(TOLOWER "${BRDFRIG_SANITIZE}" brdfrig_sanitize)
 set(BRDFRIG_FUZZ OFF)
 set(BRDFRIG_TSAN OFF)
 if(brdfrig_sanitize STREQUAL "thread")
   set(BRDFRIG_TSAN ON)
-  target_compile_options(brdfrig_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer -O1)
+  target_compile_options(brdfrig_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer -O1
+                                                   -g1)
   target_link_options(brdfrig_options INTERFACE -fsanitize=thread)
-elseif(brdfrig_sanitize STREQUAL "fuzzer")
-  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
-    message(FATAL_ERROR "BRDFRIG_SANITIZE=fuzzer needs clang (libFuzzer): use the fuzz preset")
-  endif()
-  set(BRDFRIG_FUZZ ON)
-  # Every library gets libFuzzer's coverage instrumentation; only the fuzz targets link its
-  # main (fuzz/CMakeLists.txt adds -fsanitize=fuzzer to them).
-  target_compile_options(brdfrig_options INTERFACE -fsanitize=fuzzer-no-link
-                                                   -fsanitize=address,undefined
-                                                   -fno-omit-frame-pointer -O1
-                                                   -fno-sanitize-recover=undefined)
-  target_link_options(brdfrig_options INTERFACE -fsanitize=address,undefined)
 elseif(BRDFRIG_SANITIZE)
   target_compile_options(brdfrig_options INTERFACE -fsanitize=address,undefined
                                                    -fno-sanitize-recover=undefined
-                                                   -fno-omit-frame-pointer -O1)
+                                                   -fno-omit-frame-pointer -O1 -g1)
   target_link_options(brdfrig_options INTERFACE -fsanitize=address,undefined)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    set(BRDFRIG_FUZZ ON)
+    # Every library gets libFuzzer's coverage instrumentation; only the fuzz targets link its
+    # main (fuzz/CMakeLists.txt adds -fsanitize=fuzzer to them).
+    target_compile_options(brdfrig_options INTERFACE -fsanitize=fuzzer-no-link)
+  endif()
 endif()
+# lld links the ~100 test programs (each holding most of the static libraries) several times
+# faster than GNU ld, most of all the instrumented ones.
+target_link_options(brdfrig_options INTERFACE -fuse-ld=lld)
 # Eigen picks its allocator per translation unit: under AddressSanitizer (__SANITIZE_ADDRESS__)
 # it pads and offsets every heap block itself, elsewhere it trusts glibc's 16-byte-aligned
 # malloc. Debian's Ceres is a static library built without ASan, so one program would hold both

@@ -2,10 +2,11 @@
 # The test command (CI runs exactly this, see .ci/run): installs missing packages, then runs
 # in order, stopping at the first failure, and prints each step's time:
 #   release  release build, the whole ctest suite
-#   asan     AddressSanitizer + UndefinedBehaviorSanitizer build, the whole suite
+#   asan     AddressSanitizer + UndefinedBehaviorSanitizer build (clang), the suite but for the
+#            tests labelled "accuracy" (release only, see tests/CMakeLists.txt), then
+#            every libFuzzer target of the same build for a smoke time over its seed corpus
+#            (BRDFRIG_FUZZ_SECONDS, default 10; see docs/fuzzing.md)
 #   tsan     ThreadSanitizer build of the threaded parts' tests (ctest label "threads")
-#   fuzz     the libFuzzer targets (clang), each run for a smoke time over its seed corpus
-#            (BRDFRIG_FUZZ_SECONDS, default 25; see docs/fuzzing.md)
 # One or more steps alone:  scripts/test.sh release   (the quick check while developing)
 #                           scripts/test.sh asan tsan
 # Tests needing lab hardware (label "hardware") are excluded; run them with
@@ -13,7 +14,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 steps=("$@")
-((${#steps[@]} > 0)) || steps=(release asan tsan fuzz)
+((${#steps[@]} > 0)) || steps=(release asan tsan)
 bash "$root/scripts/setup.sh"
 cd "$root"
 times=()
@@ -23,14 +24,16 @@ for step in "${steps[@]}"; do
   case "$step" in
     release | debug | asan | tsan)
       bash scripts/build.sh "$step"
-      ctest --preset "$step" -LE hardware
-      ;;
-    fuzz)
-      bash scripts/build.sh fuzz
-      bash scripts/fuzz.sh "${BRDFRIG_FUZZ_SECONDS:-25}"
+      if [[ "$step" == asan ]]; then
+        # The accuracy studies in miniature run in release only (tests/CMakeLists.txt).
+        ctest --preset asan -LE 'hardware|accuracy'
+        bash scripts/fuzz.sh "${BRDFRIG_FUZZ_SECONDS:-10}"
+      else
+        ctest --preset "$step" -LE hardware
+      fi
       ;;
     *)
-      echo "test: unknown step '$step' (release, debug, asan, tsan or fuzz)" >&2
+      echo "test: unknown step '$step' (release, debug, asan or tsan)" >&2
       exit 2
       ;;
   esac
