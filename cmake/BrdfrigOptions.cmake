@@ -32,9 +32,13 @@ elseif(BRDFRIG_SANITIZE)
   target_link_options(brdfrig_options INTERFACE -fsanitize=address,undefined)
   if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     set(BRDFRIG_FUZZ ON)
-    # Every library gets libFuzzer's coverage instrumentation; only the fuzz targets link its
-    # main (fuzz/CMakeLists.txt adds -fsanitize=fuzzer to them).
-    target_compile_options(brdfrig_options INTERFACE -fsanitize=fuzzer-no-link)
+    # Every library gets libFuzzer's edge coverage (a byte counter per edge: cheap enough for
+    # the whole suite to run on it); only the fuzz targets link its main (fuzz/CMakeLists.txt
+    # adds -fsanitize=fuzzer to them). -fsanitize=fuzzer-no-link would add trace-cmp, a call
+    # at every integer comparison, which slows the instrumented suite in every loop; a long
+    # fuzzing session adds it on the configure line (docs/fuzzing.md).
+    target_compile_options(brdfrig_options INTERFACE
+                           -fsanitize-coverage=inline-8bit-counters,pc-table)
   endif()
 endif()
 # lld links the ~100 test programs (each holding most of the static libraries) several times

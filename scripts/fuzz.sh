@@ -10,7 +10,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-10}"
 shift || true
 cd "$root"
-out=build/asan
+out="${BRDFRIG_FUZZ_BUILD:-build/asan}"  # the build holding fuzz/ (docs/fuzzing.md)
 bin=$out/fuzz
 [[ -d "$bin" ]] || { echo "fuzz: no $bin: cmake --build --preset asan first" >&2; exit 2; }
 if (($# == 0)); then

@@ -23,6 +23,18 @@
 #include "tests/acquire/test_rig.h"
 #include "tests/common/run_brdfrig.h"
 
+
+// GCC says __SANITIZE_ADDRESS__, clang (the asan preset's compiler) __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define BRDFRIG_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define BRDFRIG_UNDER_ASAN 1
+#endif
+#endif
+#ifndef BRDFRIG_UNDER_ASAN
+#define BRDFRIG_UNDER_ASAN 0
+#endif
 namespace brdfrig::acquire {
 
 using session::ReadSession;
@@ -353,7 +365,7 @@ TEST(AcquireCliTest, InputFilesAndCountsAreBounded) {
     Result result;
     // A 4 GB address-space cap catches a reader that eats memory; AddressSanitizer reserves
     // terabytes of shadow address space, so under it only the timeout bounds the run.
-#ifdef __SANITIZE_ADDRESS__
+#if BRDFRIG_UNDER_ASAN
     const std::string cap = "";
 #else
     const std::string cap = "ulimit -v 4000000; ";
