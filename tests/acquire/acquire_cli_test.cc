@@ -23,7 +23,6 @@
 #include "tests/acquire/test_rig.h"
 #include "tests/common/run_brdfrig.h"
 
-
 // GCC says __SANITIZE_ADDRESS__, clang (the asan preset's compiler) __has_feature.
 #if defined(__SANITIZE_ADDRESS__)
 #define BRDFRIG_UNDER_ASAN 1
