@@ -3,6 +3,7 @@
 #pragma once
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace brdfrig::testing {
@@ -31,26 +33,46 @@ inline CommandResult RunBrdfrig(const std::string& arguments) {
   return result;
 }
 
+// Starts `brdfrig ARGS...` with its stdout on a pipe the returned FILE reads (stderr stays the
+// test's); `max_descriptors` > 0 sets RLIMIT_NOFILE in the child (the lab's `ulimit -n`).
+// Returns the child's pid, or -1 (and no FILE) when it could not be started.
+inline pid_t SpawnBrdfrig(std::vector<std::string> args, FILE** output, int max_descriptors = 0) {
+  *output = nullptr;
+  args.insert(args.begin(), BRDFRIG_BINARY);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  int out[2];
+  if (pipe(out) != 0) return -1;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(out[1], STDOUT_FILENO);
+    close(out[0]);
+    close(out[1]);
+    if (max_descriptors > 0) {
+      const rlimit limit{static_cast<rlim_t>(max_descriptors),
+                         static_cast<rlim_t>(max_descriptors)};
+      setrlimit(RLIMIT_NOFILE, &limit);
+    }
+    execv(BRDFRIG_BINARY, argv.data());
+    _exit(127);
+  }
+  close(out[1]);
+  if (pid < 0) {
+    close(out[0]);
+    return -1;
+  }
+  *output = fdopen(out[0], "r");
+  return pid;
+}
+
 // `brdfrig ARGS...` in the background until Stop() (Ctrl-C); keeps the first line it prints,
 // which names where it serves (the simulated drive and camera print their port first).
 class BackgroundBrdfrig {
  public:
   explicit BackgroundBrdfrig(std::vector<std::string> args) {
-    args.insert(args.begin(), BRDFRIG_BINARY);
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    int out[2];
-    if (pipe(out) != 0) return;
-    pid_ = fork();
-    if (pid_ == 0) {
-      dup2(out[1], STDOUT_FILENO);
-      close(out[0]);
-      execv(BRDFRIG_BINARY, argv.data());
-      _exit(127);
-    }
-    close(out[1]);
-    output_ = fdopen(out[0], "r");
+    pid_ = SpawnBrdfrig(std::move(args), &output_);
+    if (output_ == nullptr) return;
     char line[512];
     if (fgets(line, sizeof(line), output_) != nullptr) first_line_ = line;
   }

@@ -17,7 +17,10 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
+
+#include "tests/common/run_brdfrig.h"
 
 namespace brdfrig::simcamera::testing {
 
@@ -25,27 +28,8 @@ class CameraProcess {
  public:
   // Starts BRDFRIG_BINARY with `args`; `max_descriptors` > 0 sets RLIMIT_NOFILE in the child.
   CameraProcess(std::vector<std::string> args, int max_descriptors = 0) {
-    args.insert(args.begin(), BRDFRIG_BINARY);
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    int out[2];
-    if (pipe(out) != 0) return;
-    pid_ = fork();
-    if (pid_ == 0) {
-      dup2(out[1], STDOUT_FILENO);  // (stderr, one line per refused client, is the test's)
-      close(out[0]);
-      close(out[1]);
-      if (max_descriptors > 0) {
-        const rlimit limit{static_cast<rlim_t>(max_descriptors),
-                           static_cast<rlim_t>(max_descriptors)};
-        setrlimit(RLIMIT_NOFILE, &limit);
-      }
-      execv(BRDFRIG_BINARY, argv.data());
-      _exit(127);
-    }
-    close(out[1]);
-    output_ = fdopen(out[0], "r");
+    pid_ = brdfrig::testing::SpawnBrdfrig(std::move(args), &output_, max_descriptors);
+    if (output_ == nullptr) return;
     // The first line names the port ("... serving on ptpip:127.0.0.1:PORT:PORT (scene ...").
     char line[1024];
     while (port_ == 0 && fgets(line, sizeof line, output_) != nullptr) {
