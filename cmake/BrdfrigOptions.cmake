@@ -44,9 +44,9 @@ endif()
 # lld links the ~100 test programs (each holding most of the static libraries) several times
 # faster than GNU ld, most of all the instrumented ones.
 target_link_options(brdfrig_options INTERFACE -fuse-ld=lld)
-# Eigen picks its allocator per translation unit: under AddressSanitizer (__SANITIZE_ADDRESS__)
-# it pads and offsets every heap block itself, elsewhere it trusts glibc's 16-byte-aligned
-# malloc. Debian's Ceres is a static library built without ASan, so one program would hold both
+# Eigen picks its allocator per translation unit: where __SANITIZE_ADDRESS__ is defined (GCC's
+# ASan; clang 14 does not define it) it pads and offsets every heap block itself, elsewhere it
+# trusts glibc's 16-byte-aligned malloc. Debian's Ceres is a static library built without ASan, so one program would hold both
 # kinds of Eigen::Matrix::resize, and the linker keeps whichever it meets first: a matrix
 # allocated by Ceres's copy and freed by ours is a heap-buffer-overflow (seen in the designer's
 # K × K matrices). Every sanitized unit uses glibc's alignment too, as the uninstrumented Ceres
