@@ -25,6 +25,13 @@ std::string Escape(const std::string& text) {
   return out;
 }
 
+// Text inside a single-quoted attribute (file names).
+std::string EscapeAttribute(const std::string& text) {
+  std::string out;
+  for (char c : Escape(text)) out += c == '\'' ? std::string("&#39;") : std::string(1, c);
+  return out;
+}
+
 }  // namespace
 
 std::string Report::Html() const {
@@ -34,11 +41,30 @@ std::string Report::Html() const {
        "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;"
        "text-align:right}th{background:#eee}caption{text-align:left;font-weight:bold;"
        "padding:4px 0}figure{display:inline-block;margin:4px}img{max-width:340px}"
-       "figcaption{font-size:12px}</style></head><body>\n<h1>"
+       "figcaption{font-size:12px}table.grid td{text-align:center;vertical-align:top;"
+       "font-size:12px}table.grid th{text-align:left;max-width:220px}table.grid "
+       "img{display:block;margin:auto}"
+       ".plot{display:inline-block;vertical-align:top}</style></head><body>\n<h1>"
     << Escape(title) << "</h1>\n";
   for (const ReportSection& s : sections) {
     h << "<h2>" << Escape(s.title) << "</h2>\n";
     for (const std::string& p : s.paragraphs) h << "<p>" << Escape(p) << "</p>\n";
+    for (const ImageGrid& g : s.grids) {
+      h << "<table class='grid'><caption>" << Escape(g.caption) << "</caption><tr><th></th>";
+      for (const std::string& c : g.columns) h << "<th>" << Escape(c) << "</th>";
+      h << "</tr>\n";
+      for (const ImageGridRow& row : g.rows) {
+        h << "<tr><th>" << Escape(row.label) << "</th>";
+        for (const ImageCell& cell : row.cells) {
+          h << "<td>";
+          if (!cell.file.empty()) h << "<img src='" << EscapeAttribute(cell.file) << "'>";
+          h << Escape(cell.caption) << "</td>";
+        }
+        h << "</tr>\n";
+      }
+      h << "</table>\n";
+    }
+    for (const std::string& svg : s.svg_plots) h << "<div class='plot'>" << svg << "</div>\n";
     for (const Table& t : s.tables) {
       h << "<table><caption>" << Escape(t.caption) << "</caption><tr>";
       for (const std::string& c : t.header) h << "<th>" << Escape(c) << "</th>";
@@ -50,9 +76,8 @@ std::string Report::Html() const {
       }
       h << "</table>\n";
     }
-    for (const std::string& svg : s.svg_plots) h << "<div>" << svg << "</div>\n";
     for (const auto& [file, caption] : s.images) {
-      h << "<figure><img src='" << Escape(file) << "'><figcaption>" << Escape(caption)
+      h << "<figure><img src='" << EscapeAttribute(file) << "'><figcaption>" << Escape(caption)
         << "</figcaption></figure>\n";
     }
   }
@@ -66,6 +91,17 @@ std::string Report::Text() const {
   for (const ReportSection& s : sections) {
     out << "\n" << s.title << "\n" << std::string(s.title.size(), '-') << "\n";
     for (const std::string& p : s.paragraphs) out << p << "\n";
+    for (const ImageGrid& g : s.grids) {
+      out << "\n" << g.caption << "\n";
+      for (const ImageGridRow& row : g.rows) {
+        out << "  " << row.label << ":";
+        for (std::size_t c = 0; c < row.cells.size(); ++c) {
+          out << (c ? " |" : "") << " " << (c < g.columns.size() ? g.columns[c] + " " : "")
+              << row.cells[c].caption;
+        }
+        out << "\n";
+      }
+    }
     for (const Table& t : s.tables) {
       std::vector<std::size_t> width(t.header.size(), 0);
       for (std::size_t c = 0; c < t.header.size(); ++c) width[c] = t.header[c].size();

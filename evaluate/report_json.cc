@@ -5,6 +5,9 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/format.h"
+#include "evaluate/brdf_plots.h"
+#include "evaluate/coverage_report.h"
+#include "evaluate/material_preview.h"
 #include "evaluate/material_report.h"
 #include "evaluate/svg_plot.h"
 #include "evaluate/validation_photos.h"
@@ -145,6 +148,20 @@ json SectionJson(const ReportSection& section) {
   for (const auto& [file, caption] : section.images) {
     s["images"].push_back({{"file", file}, {"caption", caption}});
   }
+  if (!section.grids.empty()) {
+    s["grids"] = json::array();
+    for (const ImageGrid& g : section.grids) {
+      json grid = {{"caption", g.caption}, {"columns", g.columns}, {"rows", json::array()}};
+      for (const ImageGridRow& row : g.rows) {
+        json cells = json::array();
+        for (const ImageCell& c : row.cells) {
+          cells.push_back({{"file", c.file}, {"caption", c.caption}});
+        }
+        grid["rows"].push_back({{"label", row.label}, {"cells", cells}});
+      }
+      s["grids"].push_back(grid);
+    }
+  }
   return s;
 }
 
@@ -154,6 +171,21 @@ Report ReportFromJson(const json& report) {
   }
   Report out;
   out.title = report.at("title").get<std::string>();
+  const json& figures = report.at("figures");
+  // What a person looks for first comes first: the material itself, what the photos covered,
+  // and its BRDF as curves; then the job's own tables and the figures' details.
+  if (figures.contains("preview")) {
+    const json* photos =
+        figures.contains("validation_photos") ? &figures.at("validation_photos") : nullptr;
+    const json* photos_gltf = figures.contains("validation_photos_gltf")
+                                  ? &figures.at("validation_photos_gltf")
+                                  : nullptr;
+    out.sections.push_back(MaterialPreviewSection(figures.at("preview"), photos, photos_gltf));
+  }
+  if (figures.contains("coverage")) out.sections.push_back(CoverageSection(figures.at("coverage")));
+  if (figures.contains("brdf_plots")) {
+    out.sections.push_back(BrdfPlotsSection(figures.at("brdf_plots")));
+  }
   for (const json& s : report.at("sections")) {
     ReportSection section{s.at("title").get<std::string>(), {}, {}, {}, {}};
     section.paragraphs = s.at("paragraphs").get<std::vector<std::string>>();
@@ -166,9 +198,20 @@ Report ReportFromJson(const json& report) {
       section.images.push_back(
           {i.at("file").get<std::string>(), i.at("caption").get<std::string>()});
     }
+    for (const json& g : s.value("grids", json::array())) {
+      ImageGrid grid{
+          g.at("caption").get<std::string>(), g.at("columns").get<std::vector<std::string>>(), {}};
+      for (const json& row : g.at("rows")) {
+        ImageGridRow r{row.at("label").get<std::string>(), {}};
+        for (const json& c : row.at("cells")) {
+          r.cells.push_back({c.at("file").get<std::string>(), c.at("caption").get<std::string>()});
+        }
+        grid.rows.push_back(r);
+      }
+      section.grids.push_back(grid);
+    }
     out.sections.push_back(section);
   }
-  const json& figures = report.at("figures");
   if (figures.contains("held_out")) out.sections.push_back(HeldOutSection(figures["held_out"]));
   if (figures.contains("sphere")) out.sections.push_back(SphereSection(figures["sphere"]));
   if (figures.contains("brdf")) out.sections.push_back(BrdfSection(figures["brdf"]));

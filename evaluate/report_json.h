@@ -4,8 +4,12 @@
 //
 //   {"format": "brdfrig-report", "version": 1, "title": "...",
 //    "sections": [{"title", "paragraphs", "tables": [{"caption", "header", "rows"}]}, ...],
-//    "figures": {"held_out": {...}, "sphere": {...}, "brdf": {...}, (evaluate/material_report.h)
-//                "validation_photos": {...}}} (evaluate/validation_photos.h)
+//    "figures": {"preview": {...},                          (evaluate/material_preview.h)
+//                "coverage": {...},                         (evaluate/coverage_report.h)
+//                "brdf_plots": {...},                       (evaluate/brdf_plots.h)
+//                "held_out": {...}, "sphere": {...}, "brdf": {...}, (evaluate/material_report.h)
+//                "validation_photos": {...},                (evaluate/validation_photos.h)
+//                "validation_photos_gltf": {...}}}          (the glTF version's, numbers only)
 #pragma once
 
 #include <filesystem>
@@ -22,9 +26,10 @@ nlohmann::json NewReportJson(const std::string& title);
 // A job's own section (paragraphs, tables, images) as report.json stores it.
 nlohmann::json SectionJson(const ReportSection& section);
 
-// The report a person reads: the job's sections, then one section per figure group (held-out
-// views by elevation with plots and images, sphere test, BRDF against the truth). Throws
-// brdfrig::Error on a report.json of another format.
+// The report a person reads: first the material (spheres), the plan's coverage and the BRDF
+// curves, then the job's sections, then one section per remaining figure group (held-out views
+// by elevation with plots and images, sphere test, BRDF against the truth, validation photos).
+// Throws brdfrig::Error on a report.json of another format.
 Report ReportFromJson(const nlohmann::json& report);
 
 struct WrittenReport {

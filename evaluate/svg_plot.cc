@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <tuple>
@@ -25,6 +26,9 @@ std::string Escape(const std::string& text) {
       case '&':
         out += "&amp;";
         break;
+      case '\'':
+        out += "&#39;";
+        break;
       default:
         out += c;
     }
@@ -39,18 +43,30 @@ std::pair<double, double> Padded(double lo, double hi) {
   return {lo - pad, hi + pad};
 }
 
+std::string Label(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
 }  // namespace
 
 std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& options) {
+  // On a log axis every y is drawn at log10(y); values <= 0 have no place there.
+  auto plotted_y = [&](double y) {
+    if (!options.log_y) return y;
+    return y > 0 ? std::log10(y) : std::numeric_limits<double>::quiet_NaN();
+  };
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   double y_lo = x_lo, y_hi = -x_lo;
   for (const Series& s : series) {
     for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      const double y = plotted_y(s.y[i]);
+      if (!std::isfinite(s.x[i]) || !std::isfinite(y)) continue;
       x_lo = std::min(x_lo, s.x[i]);
       x_hi = std::max(x_hi, s.x[i]);
-      y_lo = std::min(y_lo, s.y[i]);
-      y_hi = std::max(y_hi, s.y[i]);
+      y_lo = std::min(y_lo, y);
+      y_hi = std::max(y_hi, y);
     }
   }
   if (!std::isfinite(x_lo)) x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
@@ -72,37 +88,65 @@ std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& op
       << "<rect x='" << left << "' y='" << top << "' width='" << pw << "' height='" << ph
       << "' fill='none' stroke='black'/>\n";
   for (int i = 0; i <= 5; ++i) {
-    const double xv = x_lo + (x_hi - x_lo) * i / 5, yv = y_lo + (y_hi - y_lo) * i / 5;
+    const double xv = x_lo + (x_hi - x_lo) * i / 5;
     svg << "<line x1='" << sx(xv) << "' y1='" << top + ph << "' x2='" << sx(xv) << "' y2='"
         << top + ph + 5 << "' stroke='black'/><text x='" << sx(xv) << "' y='" << top + ph + 18
-        << "' text-anchor='middle'>" << xv << "</text>\n"
-        << "<line x1='" << left - 5 << "' y1='" << sy(yv) << "' x2='" << left << "' y2='" << sy(yv)
+        << "' text-anchor='middle'>" << Label(xv) << "</text>\n";
+  }
+  std::vector<double> y_ticks;  // in plotted units
+  const int first_decade = static_cast<int>(std::ceil(y_lo)),
+            last_decade = static_cast<int>(std::floor(y_hi));
+  if (options.log_y && last_decade - first_decade >= 1) {
+    const int step = std::max(1, (last_decade - first_decade + 7) / 8);  // at most ~8 labels
+    for (int d = first_decade; d <= last_decade; d += step) y_ticks.push_back(d);
+  } else {
+    for (int i = 0; i <= 5; ++i) y_ticks.push_back(y_lo + (y_hi - y_lo) * i / 5);
+  }
+  for (const double yv : y_ticks) {
+    const std::string label = options.log_y ? Label(std::pow(10.0, yv)) : Label(yv);
+    svg << "<line x1='" << left - 5 << "' y1='" << sy(yv) << "' x2='" << left << "' y2='" << sy(yv)
         << "' stroke='black'/><text x='" << left - 8 << "' y='" << sy(yv) + 4
-        << "' text-anchor='end'>" << yv << "</text>\n";
+        << "' text-anchor='end'>" << label << "</text>\n";
+    if (options.log_y) {
+      svg << "<line x1='" << left << "' y1='" << sy(yv) << "' x2='" << left + pw << "' y2='"
+          << sy(yv) << "' stroke='#ddd'/>\n";
+    }
   }
   svg << "<text x='" << left + pw / 2 << "' y='" << options.height - 10 << "' text-anchor='middle'>"
       << Escape(options.x_label) << "</text>\n"
       << "<text transform='translate(15," << top + ph / 2 << ") rotate(-90)' text-anchor='middle'>"
-      << Escape(options.y_label) << "</text>\n";
+      << Escape(options.y_label + (options.log_y ? " (log scale)" : "")) << "</text>\n";
   for (std::size_t k = 0; k < series.size(); ++k) {
     const Series& s = series[k];
-    const char* colour = kColours[k % std::size(kColours)];
+    const std::string colour =
+        s.colour.empty() ? kColours[k % std::size(kColours)] : Escape(s.colour);
     std::ostringstream points;
     points.precision(5);
+    svg << "<g class='series' data-label='" << Escape(s.label) << "'>\n";
     for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
-      points << sx(s.x[i]) << "," << sy(s.y[i]) << " ";
-      svg << "<circle cx='" << sx(s.x[i]) << "' cy='" << sy(s.y[i]) << "' r='3' fill='" << colour
-          << "'/>\n";
+      const double y = plotted_y(s.y[i]);
+      if (!std::isfinite(s.x[i]) || !std::isfinite(y)) continue;
+      points << sx(s.x[i]) << "," << sy(y) << " ";
+      if (s.markers || !s.lines) {
+        svg << "<circle cx='" << sx(s.x[i]) << "' cy='" << sy(y) << "' r='" << (s.lines ? 3 : 2)
+            << "' fill='" << colour << "'" << (s.lines ? "" : " fill-opacity='0.5'") << "/>\n";
+      }
     }
     if (s.lines) {
-      svg << "<polyline fill='none' stroke='" << colour << "' stroke-width='1.5' points='"
-          << points.str() << "'/>\n";
+      svg << "<polyline fill='none' stroke='" << colour << "' stroke-width='1.5'"
+          << (s.dashed ? " stroke-dasharray='6,4'" : "") << " points='" << points.str() << "'/>\n";
     }
+    svg << "</g>\n";
     const double ly = top + 10 + 18 * static_cast<double>(k);
-    svg << "<rect x='" << left + pw + 12 << "' y='" << ly - 8 << "' width='12' height='3' fill='"
-        << colour << "'/><text x='" << left + pw + 30 << "' y='" << ly << "'>" << Escape(s.label)
-        << "</text>\n";
+    if (s.lines) {
+      svg << "<line x1='" << left + pw + 8 << "' y1='" << ly - 4 << "' x2='" << left + pw + 26
+          << "' y2='" << ly - 4 << "' stroke='" << colour << "' stroke-width='2'"
+          << (s.dashed ? " stroke-dasharray='5,3'" : "") << "/>";
+    } else {
+      svg << "<circle cx='" << left + pw + 17 << "' cy='" << ly - 4 << "' r='3' fill='" << colour
+          << "'/>";
+    }
+    svg << "<text x='" << left + pw + 30 << "' y='" << ly << "'>" << Escape(s.label) << "</text>\n";
   }
   svg << "</svg>\n";
   return svg.str();

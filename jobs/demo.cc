@@ -9,10 +9,12 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "evaluate/held_out.h"
+#include "evaluate/material_overview.h"
 #include "evaluate/material_report.h"
 #include "evaluate/report.h"
 #include "evaluate/report_json.h"
 #include "jobs/ladder_section.h"
+#include "jobs/report_samples.h"
 #include "jobs/validation_photos.h"
 #include "reconstruct/batch.h"
 #include "sim/devices.h"
@@ -139,6 +141,32 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
     validation_photos = CompareValidationPhotos(capture, fitted, {},
                                                 [&](const std::string& m) { say("      " + m); });
   }
+  // The report's opening figures: the material on a sphere beside the truth (and its glTF
+  // version), the plan's coverage in (θh, θd), the BRDF's slices with the measured samples.
+  say("      the material on a sphere, the plan's coverage, BRDF slices with the samples");
+  evaluate::OverviewInputs opening;
+  opening.models.truth = scene.sample.brdf.get();
+  opening.models.fit = &fitted;
+  opening.models.fit_label = std::string("fit (") + brdf::ModelKindName(result.material.kind) + ")";
+  const std::shared_ptr<const brdf::Brdf> gltf =
+      evaluate::GltfVersionOf(result.material, &opening.models.gltf_note);
+  opening.models.gltf = gltf.get();
+  if (fs::exists(out / "material.glb")) opening.models.gltf_file = "material.glb";
+  opening.samples =
+      MeasureReportSamples(capture, {}, [&](const std::string& m) { say("      " + m); });
+  opening.plan =
+      evaluate::PlanGeometry{"the demo's plan (plan.yaml, from the capture section of " +
+                                 options.scene.filename().string() + ")",
+                             scene.rig, scene.capture.positions, scene.capture.validation};
+  opening.sphere = judge.sphere;
+  nlohmann::json opening_figures = nlohmann::json::object();
+  evaluate::AddOverviewFigures(opening, out, &opening_figures);
+  std::vector<evaluate::ValidationPhotoResult> validation_photos_gltf;
+  if (gltf && !result.validation.empty()) {
+    ValidationPhotoOptions numbers_only;
+    numbers_only.keep_images = false;
+    validation_photos_gltf = CompareValidationPhotos(capture, *gltf, numbers_only);
+  }
   const double evaluate_s = SecondsSince(start);
 
   say("[4/4] report");
@@ -201,6 +229,11 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
     json["figures"]["validation_photos"] =
         evaluate::ValidationPhotosJson(validation_photos, capture.name, out);
   }
+  if (!validation_photos_gltf.empty()) {
+    json["figures"]["validation_photos_gltf"] =
+        evaluate::ValidationPhotosJson(validation_photos_gltf, capture.name);
+  }
+  json["figures"].update(opening_figures);
   const evaluate::WrittenReport written = evaluate::WriteReport(out, json);
   DemoSummary summary;
   summary.text = written.text;

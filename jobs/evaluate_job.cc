@@ -6,8 +6,10 @@
 #include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "evaluate/material_overview.h"
 #include "evaluate/material_report.h"
 #include "evaluate/report_json.h"
+#include "jobs/report_samples.h"
 #include "jobs/validation_photos.h"
 #include "reconstruct/batch.h"
 #include "sim/scene.h"
@@ -55,16 +57,16 @@ EvaluateSummary RunEvaluate(const EvaluateOptions& options) {
 
   std::string against;
   nlohmann::json figures_json = nlohmann::json::object();
+  evaluate::JudgeOptions judge;
+  judge.view_elevations_deg = options.view_elevations_deg;
+  judge.view_phis_deg = options.view_phis_deg;
+  judge.held_out.keep_images = true;
+  judge.held_out.linear_interpolation = options.linear_interpolation;
+  judge.sphere.keep_images = true;
   if (scene) {
     say("judging: " +
         std::to_string(options.view_elevations_deg.size() * options.view_phis_deg.size()) +
         " held-out views, sphere test, BRDF error");
-    evaluate::JudgeOptions judge;
-    judge.view_elevations_deg = options.view_elevations_deg;
-    judge.view_phis_deg = options.view_phis_deg;
-    judge.held_out.keep_images = true;
-    judge.held_out.linear_interpolation = options.linear_interpolation;
-    judge.sphere.keep_images = true;
     const evaluate::MaterialFigures figures = evaluate::JudgeFit(*scene, fitted, judge);
     figures_json = evaluate::FiguresJson(figures, options.output_dir);
     against = scene->Summary();
@@ -76,6 +78,39 @@ EvaluateSummary RunEvaluate(const EvaluateOptions& options) {
         evaluate::ValidationPhotosJson(photos, capture->name, options.output_dir);
     against += (against.empty() ? "" : " and ") + ("the photos of " + capture->name);
   }
+
+  // The report's opening figures: the material on a sphere (beside the truth, or beside the
+  // validation photos), its glTF version, the plan's coverage, BRDF slices and albedo.
+  evaluate::OverviewInputs overview;
+  overview.models.truth = scene ? scene->sample.brdf.get() : nullptr;
+  overview.models.fit = &fitted;
+  overview.models.fit_label = std::string("fit (") + brdf::ModelKindName(material.kind) + ")";
+  const std::shared_ptr<const brdf::Brdf> gltf =
+      evaluate::GltfVersionOf(material, &overview.models.gltf_note);
+  overview.models.gltf = gltf.get();
+  overview.sphere = judge.sphere;
+  if (capture) {
+    say("measuring the capture's fitted positions for the BRDF slices' samples");
+    overview.samples = MeasureReportSamples(*capture, photo_options.measure, say);
+    evaluate::PlanGeometry plan{
+        "the plan of " + capture->name + " (its recorded axis readings)", capture->nominal, {}, {}};
+    for (const reconstruct::CapturePosition& p : capture->positions) {
+      plan.positions.push_back(p.axis_readings);
+      plan.validation.push_back(p.validation);
+    }
+    overview.plan = plan;
+    if (gltf) {
+      ValidationPhotoOptions numbers_only = photo_options;
+      numbers_only.keep_images = false;
+      figures_json["validation_photos_gltf"] = evaluate::ValidationPhotosJson(
+          CompareValidationPhotos(*capture, *gltf, numbers_only, say), capture->name);
+    }
+  } else if (scene) {
+    overview.plan =
+        evaluate::PlanGeometry{"the capture plan of " + options.scene.string(), scene->rig,
+                               scene->capture.positions, scene->capture.validation};
+  }
+  evaluate::AddOverviewFigures(overview, options.output_dir, &figures_json);
 
   nlohmann::json report =
       evaluate::NewReportJson("brdfrig evaluate: " + options.material.string() + " against " +
