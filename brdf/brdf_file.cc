@@ -29,7 +29,9 @@ std::shared_ptr<const Brdf> LoadBrdfFile(const std::filesystem::path& path) {
 
 void ExportMerlFile(const std::filesystem::path& material, const std::filesystem::path& output) {
   if (output.extension() != ".binary") {
-    throw FileError(output.string(), "a MERL table's file name must end in .binary");
+    throw FileError(
+        output.string(),
+        "a MERL table's file name must end in .binary (a glTF file's in .glb or .gltf)");
   }
   const MerlTable table = MerlTable::Tabulate(*LoadBrdfFile(material));
   // A model finite in double can overflow the table's scale (A1 = 1e308 times 1500).

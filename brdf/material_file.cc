@@ -237,6 +237,31 @@ void ParseTable(const Reader& r, const json& doc, RusinkiewiczGrid* grid, TableV
   }
 }
 
+GltfParams ParseGltf(const Reader& r, const json& doc) {
+  const std::string path = "gltf";
+  const json& g = r.Field(doc, "", "gltf");
+  GltfParams p;
+  p.base_color = ParseRgb(r, g, path, "base_color");
+  p.metallic = r.Number(g, path, "metallic");
+  p.roughness = r.Number(g, path, "roughness");
+  p.ior = r.Number(g, path, "ior");
+  p.specular = r.Number(g, path, "specular");
+  p.specular_color = ParseRgb(r, g, path, "specular_color");
+  try {
+    p.Validate();
+  } catch (const Error& e) {
+    r.Fail(path, e.what());
+  }
+  return p;
+}
+
+json SerializeGltf(const GltfParams& p) {
+  auto rgb = [](const Rgb& c) { return json::array({c[0], c[1], c[2]}); };
+  return {{"base_color", rgb(p.base_color)}, {"metallic", p.metallic},
+          {"roughness", p.roughness},        {"ior", p.ior},
+          {"specular", p.specular},          {"specular_color", rgb(p.specular_color)}};
+}
+
 Distribution DistributionOf(ModelKind kind) {
   return kind == ModelKind::kGgx        ? Distribution::kGgx
          : kind == ModelKind::kBeckmann ? Distribution::kBeckmann
@@ -259,6 +284,8 @@ const char* ModelKindName(ModelKind kind) {
       return "beckmann";
     case ModelKind::kPrior:
       return "prior";
+    case ModelKind::kGltf:
+      return "gltf";
   }
   return "?";
 }
@@ -279,6 +306,10 @@ bool IsSliceKind(ModelKind kind) {
 std::shared_ptr<const Brdf> Material::Model() const {
   if (IsSliceKind(kind)) return std::make_shared<SliceModel>(slices);
   if (kind == ModelKind::kPrior) return std::make_shared<RusinkiewiczTable>(table_grid, table);
+  if (kind == ModelKind::kGltf) {
+    if (!gltf) throw Error("material of kind 'gltf' holds no gltf parameters");
+    return std::make_shared<GltfModel>(*gltf);
+  }
   if (microfacet.distribution != DistributionOf(kind)) {
     throw Error(std::string("material of kind '") + ModelKindName(kind) +
                 "' holds a distribution of kind '" + DistributionName(microfacet.distribution) +
@@ -322,6 +353,13 @@ Material ParseMaterial(const std::string& json_text, const std::string& source_n
   if (doc.contains("fit")) material.fit = doc.at("fit");
   if (doc.contains("ladder")) material.ladder = doc.at("ladder");
   if (doc.contains("provenance")) material.provenance = doc.at("provenance");
+  // Kind gltf's model, or any other kind's glTF version.
+  if (material.kind == ModelKind::kGltf || doc.contains("gltf")) material.gltf = ParseGltf(r, doc);
+  if (doc.contains("gltf_fit")) {
+    material.gltf_fit = doc.at("gltf_fit");
+    if (!material.gltf_fit.is_object()) r.Fail("gltf_fit", "expected an object");
+  }
+  if (material.kind == ModelKind::kGltf) return material;
   if (material.kind == ModelKind::kPrior) {
     ParseTable(r, doc, &material.table_grid, &material.table);
     return material;
@@ -388,9 +426,16 @@ std::string SerializeMaterial(const Material& material) {
     doc["slices"] = slices;
   } else if (material.kind == ModelKind::kPrior) {
     doc["table"] = SerializeTable(material.table_grid, material.table);
+  } else if (material.kind == ModelKind::kGltf) {
+    // Written below, like any kind's glTF version.
   } else {
     doc["microfacet"] = SerializeMicrofacet(material.microfacet);
   }
+  if (material.gltf) {
+    material.gltf->Validate();
+    doc["gltf"] = SerializeGltf(*material.gltf);
+  }
+  if (!material.gltf_fit.empty()) doc["gltf_fit"] = material.gltf_fit;
   doc["fit"] = material.fit;
   doc["ladder"] = material.ladder;
   doc["provenance"] = material.provenance;

@@ -25,6 +25,8 @@ const char* KindDescription(brdf::ModelKind kind) {
       return "Beckmann + Lambert, Schlick Fresnel";
     case brdf::ModelKind::kPrior:
       return "measured prior: a Rusinkiewicz table from the samples and learned materials";
+    case brdf::ModelKind::kGltf:
+      return "glTF 2.0 metal-rough BRDF (KHR_materials_ior, KHR_materials_specular)";
   }
   return "?";
 }

@@ -97,7 +97,12 @@ FoldFits FitAll(const std::vector<brdf::ModelKind>& kinds,
 }  // namespace
 
 void LadderOptions::Validate() const {
-  if (!model.empty()) (void)brdf::ParseModelKind(model);
+  if (!model.empty() && brdf::ParseModelKind(model) == brdf::ModelKind::kGltf) {
+    // Not a rung: every reconstruction writes the chosen rung's glTF version beside it.
+    throw OptionsError(
+        "LadderOptions.model = gltf; not a rung of the ladder (the glTF version "
+        "of the chosen rung is written with every material)");
+  }
   slice.Validate();
   microfacet.Validate();
   prior.Validate();

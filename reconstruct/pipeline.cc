@@ -35,6 +35,8 @@ const char* MethodOf(brdf::ModelKind kind) {
       return "Rusinkiewicz table: maximum a posteriori coefficients of the measured prior's "
              "principal components in ln(f c + eps), corrected towards the samples where the "
              "photos saw the material";
+    case brdf::ModelKind::kGltf:
+      return "glTF 2.0 metal-rough BRDF (not a rung)";
   }
   return "?";
 }
@@ -75,7 +77,13 @@ void ReconstructOptions::Validate() const {
   fit.Validate();
   directions.Validate();
   microfacet.Validate();
+  gltf.Validate();
   if (!model.empty()) (void)brdf::ParseModelKind(model);
+  if (!model.empty() && brdf::ParseModelKind(model) == brdf::ModelKind::kGltf) {
+    throw OptionsError(
+        "ReconstructOptions.model = gltf; not a rung of the ladder (the glTF "
+        "version of the chosen rung is written with every material)");
+  }
 }
 
 nlohmann::json ReconstructOptions::ResultKey() const {
@@ -109,7 +117,11 @@ nlohmann::json ReconstructOptions::ResultKey() const {
             m.loss_scale, m.max_iterations, m.covariance, m.energy_check}},
           {"prior",
            {prior.prior == nullptr ? std::string("shipped") : "custom " + prior.prior->name,
-            prior.fit.misfit_limit, prior.fit.correct}}};
+            prior.fit.misfit_limit, prior.fit.correct}},
+          {"gltf",
+           {gltf.source, gltf.theta_h_steps, gltf.theta_d_steps, gltf.phi_d_steps,
+            gltf.epsilon_fraction, gltf.loss_scale, gltf.max_iterations, gltf.sphere.resolution,
+            gltf.sphere.light_angles_deg}}};
 }
 
 ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOptions& options,
@@ -241,7 +253,23 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   provenance["positions"] = positions_json;
   provenance["dropped_positions"] = result.Dropped().size();
   provenance["degraded_positions"] = result.Degraded().size();
+  // The sample's size for the glTF export's tile (reconstruct/gltf_export.h).
+  provenance["cutout_m"] = {capture.nominal.target.cutout_width,
+                            capture.nominal.target.cutout_height};
   material.provenance = provenance;
+  // The chosen rung's glTF version and what exporting it costs (docs/gltf.md).
+  {
+    const auto start = std::chrono::steady_clock::now();
+    AddGltfVersion(&material, options.gltf,
+                   options.gltf.source == "samples" ? PoolDirectionSamples(fit_positions)
+                                                    : std::vector<DirectionSample>{});
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.stage_seconds["gltf"] += seconds;
+    say("glTF version: " + material.gltf_fit["sphere_vs_model"]["mean_psnr_db"].dump() +
+        " dB sphere PSNR against the " + brdf::ModelKindName(material.kind) + " rung (" +
+        Fixed(seconds, 2) + " s)");
+  }
   // Validates the result like any reader would: a fit must never write an invalid model.
   (void)material.Model();
   return result;

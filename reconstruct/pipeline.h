@@ -16,6 +16,7 @@
 #include "brdf/material_file.h"
 #include "reconstruct/capture_set.h"
 #include "reconstruct/fit_ladder.h"
+#include "reconstruct/gltf_fit.h"
 #include "reconstruct/measure_position.h"
 
 namespace brdfrig::reconstruct {
@@ -31,6 +32,7 @@ struct ReconstructOptions {
   DirectionSampleOptions directions;
   MicrofacetFitOptions microfacet;
   PriorRungOptions prior;  // the measured prior the `prior` rung uses (default: the shipped one)
+  GltfFitOptions gltf;     // the chosen rung's glTF version, written beside it (gltf_fit.h)
   // The model kind written: empty = every rung of the ladder fitted and the best by validation
   // chosen; a kind name ("seed", "seed_constrained", "microfacet", "ggx", "beckmann") = only
   // that rung.

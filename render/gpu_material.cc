@@ -187,6 +187,14 @@ std::unique_ptr<GpuMaterial> GpuMaterial::Table(const brdf::RusinkiewiczTable& t
   return m;
 }
 
+std::unique_ptr<GpuMaterial> GpuMaterial::Gltf(const brdf::GltfModel& model) {
+  std::unique_ptr<GpuMaterial> m(new GpuMaterial);
+  m->kind_ = Kind::kGltf;
+  m->gltf_ = model.params();
+  m->Build({"gltf_model.glsl"}, Defines("MATERIAL_GLTF"));
+  return m;
+}
+
 std::unique_ptr<GpuMaterial> GpuMaterial::ForBrdf(const brdf::Brdf& brdf) {
   if (const auto* slices = dynamic_cast<const brdf::SliceModel*>(&brdf)) {
     return SliceModel(*slices);
@@ -200,6 +208,7 @@ std::unique_ptr<GpuMaterial> GpuMaterial::ForBrdf(const brdf::Brdf& brdf) {
   if (const auto* ggx = dynamic_cast<const brdf::Ggx*>(&brdf)) return Ggx(ggx->params());
   if (const auto* table = dynamic_cast<const brdf::MerlTable*>(&brdf)) return Merl(*table);
   if (const auto* table = dynamic_cast<const brdf::RusinkiewiczTable*>(&brdf)) return Table(*table);
+  if (const auto* gltf = dynamic_cast<const brdf::GltfModel*>(&brdf)) return Gltf(*gltf);
   return Merl(brdf::MerlTable::Tabulate(brdf));
 }
 
@@ -262,6 +271,17 @@ void GpuMaterial::Bind(const GlProgram& program) const {
     case Kind::kMerl:
       program.Set("uMerl", 0);
       break;
+    case Kind::kGltf: {
+      const brdf::GltfParams& p = gltf_;
+      const double alpha = p.roughness * p.roughness;
+      program.Set("uGltfBase", ToFloat(p.base_color));
+      program.Set("uGltfDiffuse", ToFloat(p.base_color / M_PI));
+      program.Set("uGltfF0", ToFloat(p.DielectricF0()));
+      program.Set("uGltfMetallic", static_cast<float>(p.metallic));
+      program.Set("uGltfSpecular", static_cast<float>(p.specular));
+      program.Set("uGltfAlpha2", static_cast<float>(alpha * alpha));
+      break;
+    }
     case Kind::kTable: {
       const brdf::RusinkiewiczGrid& g = table_grid_;
       program.Set("uTable", 0);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "brdf/analytic.h"
+#include "brdf/gltf_model.h"
 #include "brdf/material_file.h"
 #include "brdf/merl.h"
 #include "brdf/microfacet_model.h"
@@ -39,6 +40,8 @@ class GpuMaterial {
   // texture in node order, interpolated in the shader (texelFetch) as on the CPU. Throws
   // brdfrig::Error when the table has more nodes than GL_MAX_TEXTURE_BUFFER_SIZE.
   static std::unique_ptr<GpuMaterial> Table(const brdf::RusinkiewiczTable& table);
+  // The gltf kind (shaders/gltf_model.glsl).
+  static std::unique_ptr<GpuMaterial> Gltf(const brdf::GltfModel& model);
   // Any BRDF: the kinds above get their own shader; any other model is tabulated into a MERL
   // table (35 MB on the GPU) and drawn with the table shader.
   static std::unique_ptr<GpuMaterial> ForBrdf(const brdf::Brdf& brdf);
@@ -75,7 +78,16 @@ class GpuMaterial {
   brdf::Rgb albedo_ = brdf::Rgb::Zero();
   brdf::MicrofacetParams ggx_;
   brdf::RusinkiewiczGrid table_grid_;
-  enum class Kind { kSlice, kLambert, kGgx, kMerl, kMicrofacet, kTable } kind_ = Kind::kLambert;
+  brdf::GltfParams gltf_;
+  enum class Kind {
+    kSlice,
+    kLambert,
+    kGgx,
+    kMerl,
+    kMicrofacet,
+    kTable,
+    kGltf
+  } kind_ = Kind::kLambert;
 };
 
 // Evaluates the slice model's GLSL code at each (theta_in, theta) of `angles` (CV_32FC2) into a

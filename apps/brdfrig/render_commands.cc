@@ -1,10 +1,12 @@
 #include "apps/brdfrig/render_commands.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "brdf/brdf_file.h"
 #include "jobs/render_job.h"
+#include "reconstruct/gltf_export.h"
 #include "render/viewer.h"
 
 namespace brdfrig::apps {
@@ -31,12 +33,25 @@ void RegisterRenderCommands(CLI::App& app) {
     std::string material, output;
   };
   auto export_args = std::make_shared<ExportArgs>();
-  CLI::App* export_command =
-      app.add_subcommand("export", "Write a material (any model kind) as a MERL .binary table");
+  CLI::App* export_command = app.add_subcommand(
+      "export",
+      "Write a material (any model kind) as a MERL .binary table or a glTF 2.0 .glb / .gltf "
+      "(docs/gltf.md), chosen by the output's extension");
   export_command->add_option("material", export_args->material, "material.json or MERL .binary")
       ->required();
-  export_command->add_option("-o,--output", export_args->output, "MERL table, .binary")->required();
+  export_command
+      ->add_option("-o,--output", export_args->output,
+                   "MERL table (.binary), binary glTF (.glb) or glTF JSON (.gltf, with a .bin)")
+      ->required();
   export_command->callback([export_args] {
+    const std::filesystem::path output = export_args->output;
+    if (output.extension() == ".glb" || output.extension() == ".gltf") {
+      const reconstruct::GltfExportSummary s =
+          reconstruct::ExportGltfFile(export_args->material, output);
+      std::printf("exported %s -> %s (%s)\n", export_args->material.c_str(),
+                  export_args->output.c_str(), s.ToString().c_str());
+      return;
+    }
     brdf::ExportMerlFile(export_args->material, export_args->output);
     std::printf("exported %s -> %s\n", export_args->material.c_str(), export_args->output.c_str());
   });

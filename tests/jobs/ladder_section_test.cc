@@ -117,7 +117,7 @@ TEST(LadderSectionTest, SmallDemoReportsTheLadderAndTheValidationPhoto) {
   }
   ASSERT_NE(ladder, nullptr);
   const nlohmann::json& rows = (*ladder)["tables"][0]["rows"];
-  EXPECT_EQ(rows.size(), std::size(brdf::kAllModelKinds));
+  EXPECT_EQ(rows.size(), std::size(brdf::kLadderModelKinds));
   int chosen = 0;
   for (const nlohmann::json& row : rows) chosen += row.back() == "yes";
   EXPECT_EQ(chosen, 1);

@@ -37,6 +37,18 @@ brdf::Material MakeMaterial(brdf::ModelKind kind) {
         brdf::Ggx({brdf::Rgb(0.2, 0.1, 0.05), brdf::Rgb(0.5, 0.4, 0.3), 0.15}), m.table_grid);
     return m;
   }
+  if (kind == brdf::ModelKind::kGltf) {
+    // Half metal, a coloured dielectric specular: every term of the glTF BRDF counts.
+    brdf::GltfParams g;
+    g.base_color = brdf::Rgb(0.6, 0.3, 0.1);
+    g.metallic = 0.5;
+    g.roughness = 0.4;
+    g.ior = 1.7;
+    g.specular = 0.8;
+    g.specular_color = brdf::Rgb(1.0, 0.7, 0.5);
+    m.gltf = g;
+    return m;
+  }
   brdf::MicrofacetModelParams& p = m.microfacet;
   p.diffuse = brdf::Rgb(0.2, 0.1, 0.05);
   p.f0 = brdf::Rgb(0.5, 0.4, 0.3);
