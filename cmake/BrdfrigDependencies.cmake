@@ -5,7 +5,7 @@ find_package(PkgConfig REQUIRED)
 
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(Ceres REQUIRED)
-find_package(OpenCVModules REQUIRED COMPONENTS core imgproc imgcodecs calib3d photo)
+find_package(OpenCVModules REQUIRED COMPONENTS core imgproc imgcodecs calib3d photo aruco)
 find_package(OpenEXR REQUIRED CONFIG)
 find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
@@ -23,6 +23,8 @@ pkg_check_modules(MICROHTTPD REQUIRED IMPORTED_TARGET libmicrohttpd)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET glfw3)
+# calibrate/: the printable boards and masks as PDF and SVG at exact physical size
+pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 
 if(BRDFRIG_BUILD_TESTS)
   find_package(GTest REQUIRED)

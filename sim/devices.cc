@@ -47,12 +47,14 @@ double SimCamera::SetExposure(double seconds) { return world_->SetExposure(secon
 std::vector<rig::Frame> SimCamera::Capture() {
   const ShotTicket shot = world_->BeginShot();
   const Simulator& simulator = world_->simulator();
-  const std::pair<geometry::AxisPositions, bool> key{shot.true_positions, shot.light_on};
+  const std::tuple<geometry::AxisPositions, bool, int> key{shot.true_positions, shot.light_on,
+                                                           shot.board_pose};
   const bool new_pose = !cached_key_ || *cached_key_ != key;
   if (new_pose) {
     RenderOptions options;
     options.threads = threads_;
     options.light_on = shot.light_on;
+    options.board_pose = shot.board_pose;
     cached_radiance_ = simulator.RenderRadiance(shot.true_positions, options);
     cached_key_ = key;
   }
@@ -72,7 +74,8 @@ std::vector<rig::Frame> SimCamera::Capture() {
       cached_radiance_file_ = stem + "_radiance.exr";
       WriteRadianceExr(truth_dir_ / cached_radiance_file_, cached_radiance_);
     }
-    nlohmann::json truth = simulator.GeometryAt(shot.true_positions, shot.light_on).ToJson();
+    nlohmann::json truth =
+        simulator.GeometryAt(shot.true_positions, shot.light_on, shot.board_pose).ToJson();
     truth["photo"] = frame.file_name;
     truth["exposure_s"] = shot.exposure_s;
     truth["gain"] = world_->scene().sensor.gain;

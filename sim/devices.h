@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "rig/axis.h"
 #include "rig/camera.h"
@@ -36,7 +37,7 @@ class SimCamera : public rig::Camera {
   std::filesystem::path truth_dir_;
   int threads_;
   // The last pose's radiance, reused across a bracket (only the exposure changes).
-  std::optional<std::pair<geometry::AxisPositions, bool>> cached_key_;
+  std::optional<std::tuple<geometry::AxisPositions, bool, int>> cached_key_;
   cv::Mat cached_radiance_;
   std::string cached_radiance_file_;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "brdf/analytic.h"
 #include "common/parallel.h"
@@ -14,7 +15,23 @@ namespace {
 using brdf::Rgb;
 using geometry::Vec3;
 
-enum Surface : std::uint8_t { kSky = 0, kTable = 1, kPaper = 2, kSample = 3 };
+// The board's ink and paper are surfaces of their own so that pixels straddling a printed edge
+// are anti-aliased like the cut-out's.
+enum Surface : std::uint8_t {
+  kSky = 0,
+  kTable = 1,
+  kPaper = 2,
+  kSample = 3,
+  kBoardPaper = 4,
+  kBoardInk = 5
+};
+
+// Where a ray meets the scene board's page.
+struct BoardHit {
+  double distance;       // along the unit ray
+  Eigen::Vector2d page;  // metres from the page's top-left
+  bool front;            // the printed side faces the camera
+};
 
 struct Emitter {
   Vec3 position;
@@ -44,20 +61,42 @@ std::vector<Emitter> Emitters(const Scene& scene, const TrueGeometry& g) {
 
 class Shader {
  public:
-  Shader(const Scene& scene, const TrueGeometry& g, const std::vector<Rgb>& sample_albedo)
+  Shader(const Scene& scene, const TrueGeometry& g, const std::vector<Rgb>& sample_albedo,
+         const BoardPrint* board)
       : scene_(scene),
         g_(g),
         center_(g.camera.CenterInWorld()),
         emitters_(Emitters(scene, g)),
         paper_(Rgb::Constant(scene.rig.target.paper_albedo)),
         table_(scene.background_albedo),
-        sample_albedo_(sample_albedo) {}
+        sample_albedo_(sample_albedo),
+        board_(g.board_pose >= 0 ? board : nullptr),
+        page_from_world_(g.world_from_page.inverse()) {}
 
   Vec3 Ray(double u, double v) const {
     return geometry::PixelRayInWorld(g_.intrinsics, g_.camera, Eigen::Vector2d(u, v));
   }
 
+  // The board, when the ray meets its page before anything else.
+  std::optional<BoardHit> HitBoard(const Vec3& ray) const {
+    if (board_ == nullptr) return std::nullopt;
+    const Vec3 origin = page_from_world_ * center_;
+    const Vec3 direction = page_from_world_.linear() * ray;
+    if (std::abs(direction.z()) < 1e-12) return std::nullopt;
+    const double t = -origin.z() / direction.z();
+    if (t <= 0) return std::nullopt;
+    const Vec3 p = origin + t * direction;
+    if (!board_->OnPage(p.x(), p.y())) return std::nullopt;
+    // The sample plane (or the table) in front of the board hides it.
+    if (ray.z() < 0 && center_.z() > 0 && -center_.z() / ray.z() < t) return std::nullopt;
+    return BoardHit{t, {p.x(), p.y()}, direction.z() > 0};
+  }
+
   Surface SurfaceAt(const Vec3& ray, Vec3* point) const {
+    if (const auto hit = HitBoard(ray)) {
+      *point = center_ + hit->distance * ray;
+      return hit->front && board_->Ink(hit->page.x(), hit->page.y()) ? kBoardInk : kBoardPaper;
+    }
     if (ray.z() >= 0 || center_.z() <= 0) return kSky;
     *point = center_ - (center_.z() / ray.z()) * ray;
     const geometry::TargetGeometry& t = scene_.rig.target;
@@ -74,8 +113,10 @@ class Shader {
   }
 
   Rgb Radiance(double u, double v) const {
+    const Vec3 ray = Ray(u, v);
+    if (const auto hit = HitBoard(ray)) return BoardRadiance(ray, *hit);
     Vec3 point;
-    const Surface surface = SurfaceAt(Ray(u, v), &point);
+    const Surface surface = SurfaceAt(ray, &point);
     if (surface == kSky) return Rgb::Zero();
     const brdf::Brdf& material = surface == kSample  ? *scene_.sample.brdf
                                  : surface == kPaper ? static_cast<const brdf::Brdf&>(paper_)
@@ -96,6 +137,26 @@ class Shader {
   }
 
  private:
+  // The print is Lambertian: albedo / pi times the irradiance of each emitter on the side
+  // the camera sees (the back of the sheet is bare paper).
+  Rgb BoardRadiance(const Vec3& ray, const BoardHit& hit) const {
+    const Vec3 point = center_ + hit.distance * ray;
+    const Vec3 printed_side = -(g_.world_from_page.linear() * Vec3::UnitZ());
+    const Vec3 n = hit.front ? printed_side : Vec3(-printed_side);
+    const double albedo =
+        hit.front ? board_->Albedo(hit.page.x(), hit.page.y()) : scene_.board->paper_albedo;
+    double irradiance = 0;
+    for (const Emitter& e : emitters_) {
+      Vec3 l = e.position - point;
+      const double d2 = l.squaredNorm();
+      const double cos_in = l.dot(n) / std::sqrt(d2);
+      if (cos_in > 0) irradiance += e.intensity * cos_in / d2;
+    }
+    Rgb sum = Rgb::Constant(albedo / M_PI * irradiance);
+    if (scene_.effects.ambient) sum += scene_.effects.ambient->radiance * albedo;
+    return sum;
+  }
+
   // Directional albedo towards the viewer: by reciprocity the fraction of a uniform sky's
   // radiance that leaves towards it.
   Rgb Albedo(Surface surface, const Vec3& view) const {
@@ -113,14 +174,17 @@ class Shader {
   std::vector<Emitter> emitters_;
   brdf::Lambert paper_, table_;
   const std::vector<Rgb>& sample_albedo_;
+  const BoardPrint* board_;  // null without a board
+  Eigen::Isometry3d page_from_world_;
 };
 
 }  // namespace
 
 cv::Mat SynthesizeRadiance(const Scene& scene, const TrueGeometry& g,
-                           const std::vector<Rgb>& sample_albedo, int threads) {
+                           const std::vector<Rgb>& sample_albedo, const BoardPrint* board,
+                           int threads) {
   const int width = g.intrinsics.width, height = g.intrinsics.height;
-  const Shader shader(scene, g, sample_albedo);
+  const Shader shader(scene, g, sample_albedo, board);
   const int n = scene.render.supersampling;
 
   // Surface seen at every pixel corner: a pixel whose four corners disagree straddles an edge.

@@ -12,7 +12,9 @@ struct TrueGeometry;
 
 // `sample_albedo`: the sample's directional albedo at cos(theta_v) = i / (size − 1); used only
 // by the ambient effect (empty otherwise).
+// `board`: the scene board's print (null without a board).
 cv::Mat SynthesizeRadiance(const Scene& scene, const TrueGeometry& geometry,
-                           const std::vector<brdf::Rgb>& sample_albedo, int threads);
+                           const std::vector<brdf::Rgb>& sample_albedo, const BoardPrint* board,
+                           int threads);
 
 }  // namespace brdfrig::sim

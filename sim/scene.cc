@@ -219,6 +219,7 @@ std::string Scene::Summary() const {
   std::ostringstream out;
   out << rig.intrinsics.width << "x" << rig.intrinsics.height << ", sample " << sample.brdf->Name()
       << ", effects: " << effects.Describe();
+  if (board) out << ", a ChArUco board at " << board->world_from_page.size() << " poses";
   return out.str();
 }
 
@@ -241,6 +242,7 @@ Scene ParseScene(const YamlNode& root, const std::filesystem::path& base_dir) {
   if (auto timing = root.Optional("timing")) scene.timing = ParseTiming(*timing, scene.rig);
   if (auto capture = root.Optional("capture")) scene.capture = ParseCapture(*capture, scene.rig);
   if (auto effects = root.Optional("effects")) scene.effects = ParseEffects(*effects);
+  if (auto board = root.Optional("board")) scene.board = ParseSceneBoard(*board);
   if (auto faults = root.Optional("faults")) {
     for (const YamlNode& item : faults->Elements()) {
       scene.faults.push_back(ParseFault(item, scene.rig));

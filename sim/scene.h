@@ -12,6 +12,7 @@
 //                or positions: {design: {count: 6, validation: 1, ...}} (coverage/designer.h)}
 //   effects:    see sim/effects.h
 //   faults:     scheduled device faults (see SimFault)
+//   board:      a printed ChArUco board at one or more poses (sim/scene_board.h)
 #pragma once
 
 #include <cstdint>
@@ -27,6 +28,7 @@
 #include "common/yaml_reader.h"
 #include "geometry/rig_geometry.h"
 #include "sim/effects.h"
+#include "sim/scene_board.h"
 
 namespace brdfrig::sim {
 
@@ -85,7 +87,7 @@ struct SimFault {
 };
 
 struct CapturePlan {
-  std::vector<double> exposures;              // seconds
+  std::vector<double> exposures;                   // seconds
   std::vector<geometry::AxisPositions> positions;  // radians
   // Per position: a validation position (captured, never fitted). Same length as positions.
   std::vector<bool> validation;
@@ -105,6 +107,8 @@ struct Scene {
   CapturePlan capture;
   Effects effects;
   std::vector<SimFault> faults;
+  // A printed calibration board in front of the rig, photographed at each of its poses.
+  std::optional<SceneBoard> board;
 
   // The same world seen by an ideal camera: no effects, no faults.
   Scene Ideal() const;

@@ -50,6 +50,60 @@ auto WithRecovery(Action action, SimCamera& camera, std::map<std::string, SimAxi
   }
 }
 
+// A scene holding a printed board: one photo of the board per pose, the arms where
+// --positions puts them (at rest by default), at the board's exposure.
+SimulateSummary SimulateBoard(const SimulateOptions& options, std::shared_ptr<SimWorld> world,
+                              SimulateSummary summary, nlohmann::json log) {
+  const Scene& scene = world->scene();
+  SimCamera camera(world, {}, options.threads);
+  std::map<std::string, SimAxis> axes;
+  for (const geometry::RotationAxis& axis : scene.rig.axes)
+    axes.emplace(axis.name, SimAxis(world, axis.name));
+  nlohmann::json readings = nlohmann::json::object();
+  if (!options.positions.empty()) {
+    for (const auto& [name, angle] : options.positions.front()) {
+      if (!axes.count(name)) throw Error("positions: the scene has no axis named '" + name + "'");
+      readings[name] =
+          WithRecovery([&, name = name, angle = angle] { return axes.at(name).MoveTo(angle); },
+                       camera, axes, &summary.recovered_faults)
+              .position;
+    }
+  }
+  const double exposure =
+      options.exposures.empty() ? scene.board->exposure_s : options.exposures.front();
+  const int poses = static_cast<int>(scene.board->world_from_page.size());
+  for (int p = 0; p < poses; ++p) {
+    world->SetBoardPose(p);
+    const std::vector<rig::Frame> frames = WithRecovery(
+        [&] {
+          camera.SetExposure(exposure);
+          return camera.Capture();
+        },
+        camera, axes, &summary.recovered_faults);
+    const rig::Frame& frame = frames.front();
+    const std::string stem = Name("board_%02d", p);
+    WriteFileAtomically(summary.photos_dir / (stem + scene.sensor.Extension()), frame.bytes);
+    log["frames"].push_back({{"file", stem + scene.sensor.Extension()},
+                             {"board_pose", p},
+                             {"axis_readings_rad", readings},
+                             {"exposure_s", frame.exposure_s},
+                             {"exposure_duration_s", frame.exposure_duration_s},
+                             {"download_duration_s", frame.download_duration_s}});
+    ++summary.frames;
+    if (options.write_truth) {
+      nlohmann::json g = world->simulator().GeometryAt(world->TruePositions(), true, p).ToJson();
+      g["exposure_s"] = frame.exposure_s;
+      g["gain"] = scene.sensor.gain;
+      WriteFileAtomically(summary.truth_dir / (stem + ".json"), g.dump(2) + "\n");
+    }
+  }
+  summary.positions = 1;
+  summary.virtual_time_s = world->virtual_time_s();
+  log["virtual_time_s"] = summary.virtual_time_s;
+  WriteFileAtomically(summary.photos_dir / "capture.json", log.dump(2) + "\n");
+  return summary;
+}
+
 }  // namespace
 
 void SimulateOptions::Validate() const {
@@ -76,6 +130,20 @@ SimulateSummary Simulate(const SimulateOptions& options) {
   auto world = std::make_shared<SimWorld>(options.loaded_scene ? *options.loaded_scene
                                                                : LoadScene(options.scene));
   const Scene& scene = world->scene();
+  if (scene.board) {
+    SimulateSummary summary;
+    summary.photos_dir = options.output_dir / "photos";
+    summary.truth_dir = options.output_dir / "truth";
+    std::filesystem::create_directories(summary.photos_dir);
+    if (options.write_truth) std::filesystem::create_directories(summary.truth_dir);
+    const nlohmann::json log = {
+        {"scene", std::filesystem::absolute(options.scene).lexically_normal().string()},
+        {"frames", nlohmann::json::array()}};
+    summary = SimulateBoard(options, world, summary, log);
+    summary.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return summary;
+  }
   const auto positions = options.positions.empty() ? scene.capture.positions : options.positions;
   const auto exposures = options.exposures.empty() ? scene.capture.exposures : options.exposures;
   if (positions.empty()) {

@@ -5,6 +5,9 @@
 //   DIR/photos/capture.json     what the rig reported: axis readings, exposures, durations
 //   DIR/truth/p00.exr           true radiance per position (float, for evaluation only)
 //   DIR/truth/p00.json          true geometry per position (camera pose, light, intrinsics)
+//
+// A scene holding a printed board (`board:`) is photographed once per board pose instead:
+// DIR/photos/board_00.png ..., DIR/truth/board_00.json (with the page's pose).
 #pragma once
 
 #include <filesystem>

@@ -36,11 +36,20 @@ nlohmann::json TrueGeometry::ToJson() const {
                 {"intensity", light_intensity},
                 {"radius", light_radius},
                 {"on", light_on}};
+  if (board_pose >= 0) {
+    nlohmann::json page = nlohmann::json::array();
+    const Eigen::Matrix4d b = world_from_page.matrix();
+    for (int r = 0; r < 4; ++r) page.push_back({b(r, 0), b(r, 1), b(r, 2), b(r, 3)});
+    j["board"] = {{"pose", board_pose},
+                  {"world_from_page", page},
+                  {"page", "metres from the page's top-left, x along, y down, z into the sheet"}};
+  }
   j["pixel_convention"] = "pixel centres at integer coordinates (OpenCV)";
   return j;
 }
 
 Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
+  if (scene_.board) board_print_ = std::make_shared<const BoardPrint>(*scene_.board);
   if (scene_.effects.ambient) {
     // Reciprocity: the albedo for light from theta equals the albedo towards a viewer at theta.
     for (int i = 0; i < kAlbedoTableSize; ++i) {
@@ -50,7 +59,8 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   }
 }
 
-TrueGeometry Simulator::GeometryAt(const geometry::AxisPositions& positions, bool light_on) const {
+TrueGeometry Simulator::GeometryAt(const geometry::AxisPositions& positions, bool light_on,
+                                   int board_pose) const {
   TrueGeometry g;
   g.positions = positions;
   g.intrinsics = scene_.rig.intrinsics;
@@ -63,13 +73,22 @@ TrueGeometry Simulator::GeometryAt(const geometry::AxisPositions& positions, boo
   g.light_intensity = scene_.rig.light_intensity;
   g.light_radius = scene_.effects.area_light ? scene_.effects.area_light->radius : 0.0;
   g.light_on = light_on;
+  if (scene_.board) {
+    const int poses = static_cast<int>(scene_.board->world_from_page.size());
+    if (board_pose < 0 || board_pose >= poses) {
+      throw Error("board pose " + std::to_string(board_pose) + " of a board with " +
+                  std::to_string(poses) + " poses");
+    }
+    g.board_pose = board_pose;
+    g.world_from_page = scene_.board->world_from_page[board_pose];
+  }
   return g;
 }
 
 cv::Mat Simulator::RenderRadiance(const geometry::AxisPositions& positions,
                                   const RenderOptions& options) const {
-  return SynthesizeRadiance(scene_, GeometryAt(positions, options.light_on), sample_albedo_,
-                            options.threads);
+  return SynthesizeRadiance(scene_, GeometryAt(positions, options.light_on, options.board_pose),
+                            sample_albedo_, board_print_.get(), options.threads);
 }
 
 cv::Mat Simulator::Expose(const cv::Mat& radiance, double exposure_s, std::uint64_t frame,

@@ -32,6 +32,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -51,6 +52,9 @@ struct TrueGeometry {
   double light_intensity = 0;  // W/sr (point light; total for an area light)
   double light_radius = 0;     // area_light radius, 0 for a point light
   bool light_on = true;
+  // The printed board (scene `board:`): which pose, and where the page is; -1 without a board.
+  int board_pose = -1;
+  Eigen::Isometry3d world_from_page = Eigen::Isometry3d::Identity();
 
   nlohmann::json ToJson() const;
 };
@@ -58,6 +62,7 @@ struct TrueGeometry {
 struct RenderOptions {
   int threads = 0;       // 0 = all hardware threads
   bool light_on = true;  // false: only ambient light (if listed) reaches the scene
+  int board_pose = 0;    // which of the scene board's poses (ignored without a board)
 };
 
 class Simulator {
@@ -66,7 +71,8 @@ class Simulator {
 
   const Scene& scene() const { return scene_; }
 
-  TrueGeometry GeometryAt(const geometry::AxisPositions& positions, bool light_on = true) const;
+  TrueGeometry GeometryAt(const geometry::AxisPositions& positions, bool light_on = true,
+                          int board_pose = 0) const;
 
   // Radiance reaching each pixel (world effects area_light, ambient, radial_distortion
   // included when listed). CV_32FC3, B,G,R.
@@ -89,6 +95,7 @@ class Simulator {
  private:
   Scene scene_;
   std::vector<brdf::Rgb> sample_albedo_;  // directional albedo by cos(theta_v); ambient only
+  std::shared_ptr<const BoardPrint> board_print_;  // the scene's board, rasterized once
 };
 
 }  // namespace brdfrig::sim

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "common/angles.h"
+#include "common/error.h"
 #include "sim/pixel_rng.h"
 
 namespace brdfrig::sim {
@@ -217,6 +218,7 @@ ShotTicket SimWorld::BeginShot() {
   ticket.number = number;
   ticket.exposure_s = exposure_s_;
   ticket.light_on = light_on_;
+  ticket.board_pose = board_pose_;
   for (const auto& [name, state] : axes_) ticket.true_positions[name] = state.actual;
   ticket.exposure_duration_s = exposure_s_ + s.timing.shot_overhead_s;
   ticket.download_duration_s = s.timing.download_s;
@@ -255,6 +257,16 @@ int SimWorld::shots() const {
 void SimWorld::SetLightOn(bool on) {
   std::lock_guard lock(mutex_);
   light_on_ = on;
+}
+
+void SimWorld::SetBoardPose(int pose) {
+  const int poses = scene().board ? static_cast<int>(scene().board->world_from_page.size()) : 0;
+  if (pose < 0 || pose >= poses) {
+    throw Error("board pose " + std::to_string(pose) + ": the scene's board has " +
+                std::to_string(poses) + " poses");
+  }
+  std::lock_guard lock(mutex_);
+  board_pose_ = pose;
 }
 
 double SimWorld::virtual_time_s() const {

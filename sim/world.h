@@ -25,6 +25,7 @@ struct ShotTicket {
   double exposure_s = 0;
   geometry::AxisPositions true_positions;
   bool light_on = true;
+  int board_pose = 0;  // the scene board's pose at the shot (ignored without a board)
   double exposure_duration_s = 0;
   double download_duration_s = 0;
 };
@@ -57,6 +58,10 @@ class SimWorld {
   // --- light.
   void SetLightOn(bool on);
 
+  // --- the scene's printed board (scene `board:`): which of its poses it is held at, as an
+  // operator moves it between shots. Throws Error for a pose the scene does not list.
+  void SetBoardPose(int pose);
+
   // Virtual time since the world was created (seconds). In real-time mode every operation
   // also sleeps real_time_factor × its duration.
   double virtual_time_s() const;
@@ -81,6 +86,7 @@ class SimWorld {
   std::map<std::string, AxisState> axes_;
   double clock_s_ = 0;
   bool light_on_ = true;
+  int board_pose_ = 0;
   double exposure_s_ = 0.01;
   int shots_ = 0;
   bool camera_connected_ = true;

@@ -14,6 +14,7 @@
 #include "apps/brdfrig/render_commands.h"
 #include "apps/brdfrig/rig_commands.h"
 #include "apps/brdfrig/sim_commands.h"
+#include "apps/brdfrig/target_commands.h"
 #include "common/error.h"
 #include "rig/hardware_backends.h"
 #include "sim/devices.h"
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   brdfrig::apps::RegisterEvaluateCommands(app);
   brdfrig::apps::RegisterPriorCommands(app);
   brdfrig::apps::RegisterRigCommands(app);
+  brdfrig::apps::RegisterTargetCommands(app);
   brdfrig::apps::RegisterAcquireCommands(app);
   brdfrig::apps::RegisterDaemonCommands(app);
   brdfrig::sim::RegisterSimBackends();

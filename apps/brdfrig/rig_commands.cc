@@ -4,6 +4,8 @@
 #include <memory>
 #include <string>
 
+#include "apps/brdfrig/board_options.h"
+#include "calibrate/lens_calibration.h"
 #include "common/angles.h"
 #include "common/error.h"
 #include "rig/rig_tools.h"
@@ -21,6 +23,10 @@ struct RigArgs {
   std::string output;
   sim::SimDriveOptions simdrive;
   simcamera::SimCameraOptions simcamera;
+  // rig calibrate lens
+  std::vector<std::string> photos;
+  BoardArgs board;
+  calibrate::LensCalibrationOptions lens;
 };
 
 // Faults for the simulated drive, to rehearse what an operator sees (docs/rig.md, faults).
@@ -107,6 +113,35 @@ void RegisterRigCommands(CLI::App& app) {
   simcamera->add_option("--threads", args->simcamera.threads, "Rendering threads (0: all)");
   CameraFaultsOptions(simcamera, args->simcamera.faults);
   simcamera->callback([args] { simcamera::RunSimulatedCamera(args->simcamera); });
+
+  CLI::App* calibrate = rig->add_subcommand("calibrate", "Calibrate the rig from photos");
+  calibrate->require_subcommand(1);
+  CLI::App* lens = calibrate->add_subcommand(
+      "lens",
+      "Intrinsics and distortion from photos of the printed ChArUco board; writes a "
+      "calibration file for rig.yaml's `calibration: {lens: FILE}` (never edits rig.yaml)");
+  lens->add_option("photos", args->photos, "Photos of the board, or directories of them")
+      ->required();
+  lens->add_option("-o,--output", args->output, "Calibration file to write (JSON)")->required();
+  AddBoardOptions(lens, args->board, true);
+  lens->add_option("--camera-model", args->lens.camera_model, "Camera model, recorded");
+  lens->add_option("--camera-serial", args->lens.camera_serial, "Camera serial, recorded");
+  lens->add_option("--min-corners", args->lens.min_corners,
+                   "Board corners every photo must show (default 12)");
+  lens->add_option("--min-photos", args->lens.min_photos, "Photos needed (default 4)");
+  lens->add_option("--max-edge-width", args->lens.max_edge_width_px,
+                   "Widest edge (px) of a photo in focus (default 4)");
+  lens->add_option("--min-coverage", args->lens.min_coverage,
+                   "Share of the frame the corners must cover, 0..1 (default 0.5)");
+  lens->callback([args] {
+    calibrate::LensCalibrationOptions options = args->lens;
+    options.board = BoardSpecFrom(args->board);
+    std::vector<std::filesystem::path> paths(args->photos.begin(), args->photos.end());
+    const calibrate::LensCalibrationResult result =
+        calibrate::CalibrateLens(calibrate::LoadCalibrationPhotos(paths), options);
+    geometry::WriteLensCalibration(args->output, result.calibration);
+    std::printf("%swrote %s\n", result.ToString().c_str(), args->output.c_str());
+  });
 }
 
 }  // namespace brdfrig::apps
