@@ -241,9 +241,13 @@ ReportSection BrdfPlotsSection(const json& p) {
       dots.y = Numbers(samples.at("f"));
       series.push_back(std::move(dots));
     }
-    s.svg_plots.push_back(
-        SvgLinePlot(series, {"In-plane BRDF, θi = " + Fixed(theta_in, 0) + "°",
-                             "θo (degrees, > 0 on the mirror side)", "f (1/sr)", 540, 330, true}));
+    s.svg_plots.push_back(SvgLinePlot(series, {"In-plane BRDF, θi = " + Fixed(theta_in, 0) + "°",
+                                               "θo (degrees, > 0 on the mirror side)",
+                                               "f (1/sr)",
+                                               540,
+                                               330,
+                                               true,
+                                               {-90, -60, -30, 0, 30, 60, 90}}));
   }
   s.tables.push_back(peaks);
   const json& albedo = p.at("albedo");
@@ -255,9 +259,13 @@ ReportSection BrdfPlotsSection(const json& p) {
     line.y = Numbers(albedo.at(role));
     curves.push_back(std::move(line));
   }
-  s.svg_plots.push_back(
-      SvgLinePlot(curves, {"Directional albedo against incidence angle", "θi (degrees)",
-                           "albedo (mean of R, G, B)", 540, 330, false}));
+  s.svg_plots.push_back(SvgLinePlot(curves, {"Directional albedo against incidence angle",
+                                             "θi (degrees)",
+                                             "albedo (mean of R, G, B)",
+                                             540,
+                                             330,
+                                             false,
+                                             {0, 15, 30, 45, 60, 75, 90}}));
   return s;
 }
 

@@ -4,6 +4,7 @@
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 
+#include "brdf/gltf_model.h"
 #include "common/error.h"
 #include "common/format.h"
 #include "evaluate/material_report.h"
@@ -47,14 +48,17 @@ json Row(const std::string& role, const std::string& label, const SphereTestResu
 
 std::shared_ptr<const brdf::Brdf> GltfVersionOf(const brdf::Material& material,
                                                 std::string* why_not) {
-  // The `gltf` model kind and material.json's gltf block are not part of brdf/ yet: until they
-  // are, no material has a glTF version and the report says so.
-  (void)material;
-  if (why_not) {
-    *why_not =
-        "no glTF version: this build's material.json has no gltf block (the gltf model kind is "
-        "not available yet)";
+  std::string reason;
+  if (material.kind == brdf::ModelKind::kGltf) {
+    reason = "the material is itself of the gltf kind: the fit's row is its glTF version";
+  } else if (!material.gltf) {
+    reason =
+        "no glTF version: material.json has no gltf block (written by reconstructions since "
+        "the gltf kind; `brdfrig export` fits one for older files)";
+  } else {
+    return std::make_shared<brdf::GltfModel>(*material.gltf);
   }
+  if (why_not) *why_not = reason;
   return nullptr;
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 #include <tuple>
+#include <vector>
 
 namespace brdfrig::evaluate {
 namespace {
@@ -43,6 +44,23 @@ std::pair<double, double> Padded(double lo, double hi) {
   return {lo - pad, hi + pad};
 }
 
+// Ticks at round values (1, 2 or 5 times a power of ten) inside [lo, hi], about `count` of
+// them: axis labels a person reads at a glance, not the padded range's fifths.
+std::vector<double> NiceTicks(double lo, double hi, int count) {
+  const double raw = (hi - lo) / count;
+  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = magnitude;
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    step = m * magnitude;
+    if (step >= raw) break;
+  }
+  std::vector<double> ticks;
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * step; t += step) {
+    ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+  }
+  return ticks;
+}
+
 std::string Label(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", v);
@@ -71,6 +89,9 @@ std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& op
   }
   if (!std::isfinite(x_lo)) x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
   std::tie(x_lo, x_hi) = Padded(x_lo, x_hi);
+  const bool fixed_x =
+      options.x_ticks.size() >= 2 && options.x_ticks.front() < options.x_ticks.back();
+  if (fixed_x) x_lo = options.x_ticks.front(), x_hi = options.x_ticks.back();
   std::tie(y_lo, y_hi) = Padded(y_lo, y_hi);
 
   const double left = 70, right = 160, top = 40, bottom = 50;
@@ -87,8 +108,7 @@ std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& op
       << Escape(options.title) << "</text>\n"
       << "<rect x='" << left << "' y='" << top << "' width='" << pw << "' height='" << ph
       << "' fill='none' stroke='black'/>\n";
-  for (int i = 0; i <= 5; ++i) {
-    const double xv = x_lo + (x_hi - x_lo) * i / 5;
+  for (const double xv : fixed_x ? options.x_ticks : NiceTicks(x_lo, x_hi, 6)) {
     svg << "<line x1='" << sx(xv) << "' y1='" << top + ph << "' x2='" << sx(xv) << "' y2='"
         << top + ph + 5 << "' stroke='black'/><text x='" << sx(xv) << "' y='" << top + ph + 18
         << "' text-anchor='middle'>" << Label(xv) << "</text>\n";
@@ -99,8 +119,10 @@ std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& op
   if (options.log_y && last_decade - first_decade >= 1) {
     const int step = std::max(1, (last_decade - first_decade + 7) / 8);  // at most ~8 labels
     for (int d = first_decade; d <= last_decade; d += step) y_ticks.push_back(d);
-  } else {
+  } else if (options.log_y) {
     for (int i = 0; i <= 5; ++i) y_ticks.push_back(y_lo + (y_hi - y_lo) * i / 5);
+  } else {
+    y_ticks = NiceTicks(y_lo, y_hi, 6);
   }
   for (const double yv : y_ticks) {
     const std::string label = options.log_y ? Label(std::pow(10.0, yv)) : Label(yv);
@@ -125,7 +147,7 @@ std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& op
     svg << "<g class='series' data-label='" << Escape(s.label) << "'>\n";
     for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
       const double y = plotted_y(s.y[i]);
-      if (!std::isfinite(s.x[i]) || !std::isfinite(y)) continue;
+      if (!std::isfinite(s.x[i]) || !std::isfinite(y) || s.x[i] < x_lo || s.x[i] > x_hi) continue;
       points << sx(s.x[i]) << "," << sy(y) << " ";
       if (s.markers || !s.lines) {
         svg << "<circle cx='" << sx(s.x[i]) << "' cy='" << sy(y) << "' r='" << (s.lines ? 3 : 2)

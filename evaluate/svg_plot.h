@@ -22,6 +22,9 @@ struct PlotOptions {
   // A logarithmic y axis (ticks at the decades): BRDF values span orders of magnitude between
   // the specular peak and the diffuse floor, and a linear axis shows only the peak.
   bool log_y = false;
+  // Fixed x ticks (ascending; the axis spans the first to the last): angles read best at round
+  // steps such as every 30°. Empty = the data's range, padded, with round ticks.
+  std::vector<double> x_ticks;
 };
 
 std::string SvgLinePlot(const std::vector<Series>& series, const PlotOptions& options);

@@ -17,6 +17,7 @@
 #include "jobs/report_samples.h"
 #include "jobs/validation_photos.h"
 #include "reconstruct/batch.h"
+#include "reconstruct/gltf_export.h"
 #include "sim/devices.h"
 #include "sim/scene.h"
 
@@ -118,6 +119,10 @@ DemoSummary RunDemo(const DemoOptions& options_in) {
       capture, reconstruct_options, [&](const std::string& m) { say("      " + m); });
   result.material.provenance["input_sha256"] = reconstruct::CaptureFingerprint(capture);
   brdf::WriteMaterialFile(out / "material.json", result.material);
+  // The material as glTF 2.0 beside it, for the tools people use every day (docs/gltf.md).
+  const reconstruct::GltfExportSummary exported =
+      reconstruct::ExportGltfFile(out / "material.json", out / "material.glb");
+  say("      material.glb: " + exported.ToString());
   const double reconstruct_s = SecondsSince(start);
   const std::shared_ptr<const brdf::Brdf> fitted_model = result.material.Model();
   const brdf::Brdf& fitted = *fitted_model;

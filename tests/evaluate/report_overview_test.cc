@@ -9,6 +9,8 @@
 #include <set>
 
 #include "brdf/analytic.h"
+#include "brdf/gltf_model.h"
+#include "brdf/material_file.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/format.h"
@@ -16,6 +18,7 @@
 #include "evaluate/coverage_report.h"
 #include "evaluate/material_report.h"
 #include "evaluate/report_json.h"
+#include "evaluate/validation_photos.h"
 #include "sim/scene.h"
 
 namespace brdfrig::evaluate {
@@ -170,6 +173,76 @@ TEST(ReportOverviewTest, TheSlicesPlotHoldsTheTruthAndTheFitSeries) {
   // The json holds the curves the plots draw: the fit's in-plane values are a Lambert's ρ/π.
   const nlohmann::json& slice = w.report.at("figures").at("brdf_plots").at("slices")[0];
   for (const auto& v : slice.at("f").at("fit")) EXPECT_NEAR(v.get<double>(), 0.2 / M_PI, 1e-12);
+}
+
+TEST(ReportOverviewTest, TheGltfVersionIsARowOfItsOwnWithItsPsnr) {
+  const sim::Scene scene = TestScene();
+  brdf::Material material;
+  material.kind = brdf::ModelKind::kGgx;
+  std::string why;
+  EXPECT_EQ(GltfVersionOf(material, &why), nullptr);
+  EXPECT_NE(why.find("no gltf block"), std::string::npos) << why;
+  brdf::GltfParams params;
+  params.base_color = brdf::Rgb(0.5, 0.3, 0.1);
+  params.roughness = 0.4;
+  material.gltf = params;
+  const std::shared_ptr<const brdf::Brdf> gltf = GltfVersionOf(material, &why);
+  ASSERT_NE(gltf, nullptr);
+  const brdf::Lambert fit(brdf::Rgb(0.3, 0.2, 0.1));
+  const fs::path dir = fs::temp_directory_path() / "brdfrig_overview_gltf";
+  fs::remove_all(dir);
+  PreviewModels models{scene.sample.brdf.get(), &fit, "fit", gltf.get(), "", "material.glb"};
+  SphereTestOptions sphere;
+  sphere.resolution = 40;
+  nlohmann::json report = NewReportJson("glTF row");
+  report["figures"]["preview"] = MaterialPreviewJson(models, sphere, dir);
+  const nlohmann::json& rows = report["figures"]["preview"]["rows"];
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[2].at("role"), "gltf");
+  EXPECT_EQ(rows[2].at("against"), "truth");
+  const SphereTestResult expected = SphereTest(*scene.sample.brdf, *gltf, sphere);
+  EXPECT_DOUBLE_EQ(NumberFromJson(rows[2].at("mean_psnr_db")), expected.mean_psnr_db);
+  const std::string html = ReadFileToString(WriteReport(dir, report).html);
+  EXPECT_NE(html.find("<img src='preview/gltf_light60.png'>"), std::string::npos);
+  EXPECT_NE(html.find("glTF 2.0 export: material.glb"), std::string::npos);
+}
+
+TEST(ReportOverviewTest, WithoutATruthTheFitIsBesideTheValidationPhotos) {
+  const brdf::Lambert fit(brdf::Rgb(0.3, 0.2, 0.1));
+  brdf::GltfParams params;
+  params.roughness = 0.6;
+  const brdf::GltfModel gltf(params);
+  const fs::path dir = fs::temp_directory_path() / "brdfrig_overview_hardware";
+  fs::remove_all(dir);
+  SphereTestOptions sphere;
+  sphere.resolution = 40;
+  nlohmann::json report = NewReportJson("a hardware capture");
+  report["figures"]["preview"] =
+      MaterialPreviewJson({nullptr, &fit, "fit (ggx)", &gltf, "", ""}, sphere, dir);
+  // One validation photo (a flat grey photo and a brighter prediction), as the job measures it.
+  ValidationPhotoResult photo;
+  photo.position = 5;
+  photo.measured = true;
+  photo.theta_in_deg = 41.5;
+  photo.photo = cv::Mat(20, 20, CV_32FC3, cv::Scalar::all(0.2));
+  photo.prediction = cv::Mat(20, 20, CV_32FC3, cv::Scalar::all(0.25));
+  photo.figures = CompareSampleRadiance(photo.photo, photo.prediction,
+                                        cv::Mat(20, 20, CV_8UC1, cv::Scalar(255)), "photo");
+  report["figures"]["validation_photos"] = ValidationPhotosJson({photo}, "session", dir);
+  const nlohmann::json& rows = report["figures"]["preview"]["rows"];
+  ASSERT_EQ(rows.size(), 2u);  // the fit (no truth to compare with), its glTF version
+  EXPECT_FALSE(rows[0].contains("psnr_db"));
+  EXPECT_EQ(rows[1].at("against"), "fit");
+  EXPECT_DOUBLE_EQ(NumberFromJson(rows[1].at("mean_psnr_db")),
+                   SphereTest(fit, gltf, sphere).mean_psnr_db);
+  const std::string html = ReadFileToString(WriteReport(dir, report).html);
+  const std::string first = HtmlSection(html, 0);
+  EXPECT_NE(first.find("<img src='preview/fit_light0.png'>"), std::string::npos);
+  EXPECT_NE(first.find("<img src='validation/p5_photo.png'>"), std::string::npos);
+  EXPECT_NE(first.find("<img src='validation/p5_render.png'>"), std::string::npos);
+  EXPECT_NE(first.find("position 5 (θi 41.5°)"), std::string::npos);
+  EXPECT_NE(first.find(Fixed(photo.figures.normalized_sample.psnr_db, 2) + " dB"),
+            std::string::npos);
 }
 
 }  // namespace
