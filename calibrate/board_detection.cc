@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -42,6 +43,25 @@ double MedianEdgeWidth(const cv::Mat& detection_image, const std::vector<cv::Poi
   if (widths.empty()) return 0;
   std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
   return widths[widths.size() / 2];
+}
+
+// OpenCV 4.6's interpolateCornersCharuco returns corners half a pixel right of and below the
+// chessboard's saddle points (pixel centres at integers, OpenCV's convention and ours: a
+// pixel-aligned board's corner between pixels 99 and 100 comes back at 100, not 99.5; found
+// against the simulator's truth, tests/calibrate/lens_refusal_test). That bias would move the
+// principal point by half a pixel, so the corners are refined again from where they were
+// placed, with a window well inside the smallest square seen.
+void RefineSaddlePoints(const cv::Mat& image, std::vector<cv::Point2f>* corners) {
+  if (corners->size() < 2) return;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < corners->size(); ++i) {
+    for (std::size_t j = i + 1; j < corners->size(); ++j) {
+      nearest = std::min(nearest, static_cast<double>(cv::norm((*corners)[i] - (*corners)[j])));
+    }
+  }
+  const int half = std::clamp(static_cast<int>(0.3 * nearest), 2, 12);
+  cv::cornerSubPix(image, *corners, cv::Size(half, half), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
 }
 
 }  // namespace
@@ -90,6 +110,7 @@ BoardDetection DetectBoard(const cv::Mat& photo, const CharucoSpec& spec, const 
     d.corners.push_back(corners.at<cv::Point2f>(i));
     d.ids.push_back(ids.at<int>(i));
   }
+  RefineSaddlePoints(image, &d.corners);
   d.edge_width_px = MedianEdgeWidth(image, d.corners);
   return d;
 }
