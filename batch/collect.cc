@@ -5,60 +5,13 @@
 
 #include "batch/manifest.h"
 #include "batch/task.h"
+#include "common/display_text.h"
 #include "common/error.h"
 
 namespace brdfrig::batch {
 
 namespace fs = std::filesystem;
 using Outcome = CollectedItem::Outcome;
-
-namespace {
-
-bool IsControl(char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }
-
-// A capture's name may hold any byte but '/' and NUL: one with a newline must not split its
-// report line. Such a path is shown as bash's $'...' (pasteable); others as they are.
-std::string DisplayPath(const std::string& path) {
-  bool plain = true;
-  for (char c : path) plain = plain && !IsControl(c);
-  if (plain) return path;
-  std::string quoted = "$'";
-  for (char c : path) {
-    if (c == '\n') {
-      quoted += "\\n";
-    } else if (c == '\t') {
-      quoted += "\\t";
-    } else if (c == '\\' || c == '\'') {
-      quoted += std::string("\\") + c;
-    } else if (IsControl(c)) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
-      quoted += escaped;
-    } else {
-      quoted += c;
-    }
-  }
-  return quoted + "'";
-}
-
-// A message (which may quote such a path) on one line.
-std::string OneLine(const std::string& text) {
-  std::string line;
-  for (char c : text) {
-    if (c == '\n') {
-      line += "\\n";
-    } else if (IsControl(c)) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
-      line += escaped;
-    } else {
-      line += c;
-    }
-  }
-  return line;
-}
-
-}  // namespace
 
 std::string OutcomeName(Outcome outcome) {
   switch (outcome) {

@@ -12,6 +12,7 @@
 #include "batch/sbatch_script.h"
 #include "batch/slurm.h"
 #include "batch/task.h"
+#include "common/display_text.h"
 #include "common/error.h"
 
 namespace brdfrig::apps {
@@ -134,11 +135,12 @@ void RegisterRun(CLI::App* batch) {
     const int index = index_option->count() > 0 ? args->index : batch::TaskIndexFromEnvironment();
     const batch::TaskResult result = batch::RunTask(dir, index, Say);
     std::printf("%-10s %d %s -> %s (%.1f s)%s%s\n", result.item.StatusName().c_str(), index,
-                result.item.input.c_str(), result.item.material_file.c_str(), result.item.seconds,
+                DisplayPath(result.item.input.string()).c_str(),
+                DisplayPath(result.item.material_file.string()).c_str(), result.item.seconds,
                 result.exit_status == 1 ? ": " : "",
-                result.exit_status == 1 ? result.item.message.c_str() : "");
+                result.exit_status == 1 ? OneLine(result.item.message).c_str() : "");
     for (const std::string& d : result.item.dropped)
-      std::printf("           dropped %s\n", d.c_str());
+      std::printf("           dropped %s\n", OneLine(d).c_str());
     ExitWith(result.exit_status, "item " + std::to_string(index) + " failed");
   });
 }

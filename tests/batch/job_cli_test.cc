@@ -2,7 +2,8 @@
 // written by hand and stand-ins for sbatch and sacct placed first in PATH: an unreadable result
 // is that item's failure, a capture name with a newline stays on its line, a SIGTERM while
 // sbatch runs does not lose the submission (issue 25, finding 10), and a killed writer's
-// temporary result is cleaned by the next one (finding 11).
+// temporary result is cleaned by the next one (finding 11), and `batch run` keeps such a name on
+// its status line.
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -169,6 +170,20 @@ TEST_F(JobCliTest, ATaskRemovesTheTemporariesKilledWritersLeftBesideItsResultAnd
   std::string text;
   std::getline(in, text);
   EXPECT_EQ(text, "precious");
+}
+
+// `batch run` printed the item's capture and material as they are: a name with a newline split
+// the task's one status line (the Slurm log a lab greps) in two.
+TEST_F(JobCliTest, ATaskWithANewlineInItsCaptureNameKeepsItsStatusOnOneLine) {
+  const auto result =
+      brdfrig::testing::RunBrdfrig("batch run '" + (root_ / "job").string() + "' --index 2");
+  EXPECT_EQ(result.status, 1) << result.output;  // the capture does not exist: that item fails
+  const std::string quoted = "$'" + (root_ / "archive").string() + "/bad\\nname'";
+  EXPECT_NE(result.output.find(" 2 " + quoted + " -> $'"), std::string::npos) << result.output;
+  std::istringstream lines(result.output);
+  for (std::string line; std::getline(lines, line);) {
+    EXPECT_FALSE(line.starts_with("name")) << "a capture's name split its line:\n" << result.output;
+  }
 }
 
 }  // namespace
