@@ -3,7 +3,8 @@
 # in order, stopping at the first failure, and prints each step's time:
 #   release  release build, the whole ctest suite
 #   asan     AddressSanitizer + UndefinedBehaviorSanitizer build (clang), the suite but for the
-#            tests labelled "accuracy" (release only, see tests/CMakeLists.txt), then
+#            tests labelled "accuracy" or "consumers" (release only, see tests/CMakeLists.txt),
+#            then
 #            every libFuzzer target of the same build for a smoke time over its seed corpus
 #            (BRDFRIG_FUZZ_SECONDS, default 10; see docs/fuzzing.md)
 #   tsan     ThreadSanitizer build of the threaded parts' tests (ctest label "threads")
@@ -25,8 +26,10 @@ for step in "${steps[@]}"; do
     release | debug | asan | tsan)
       bash scripts/build.sh "$step"
       if [[ "$step" == asan ]]; then
-        # The accuracy studies in miniature run in release only (tests/CMakeLists.txt).
-        ctest --preset asan -LE 'hardware|accuracy'
+        # The accuracy studies in miniature and the glTF consumers (three.js, Blender: programs
+        # of their own; the exporter they read is instrumented in the brdf tests) run in release
+        # only (tests/CMakeLists.txt, tests/consumers/CMakeLists.txt).
+        ctest --preset asan -LE 'hardware|accuracy|consumers'
         bash scripts/fuzz.sh "${BRDFRIG_FUZZ_SECONDS:-10}"
       else
         ctest --preset "$step" -LE hardware
