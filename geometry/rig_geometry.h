@@ -65,6 +65,9 @@ struct RigDescription {
   // Files a session must copy to be reprocessable on its own: the rig file itself and, when
   // the geometry lives in another file, that file.
   std::vector<std::filesystem::path> source_files;
+  // The lens calibration rig.yaml references (`calibration: {lens: FILE}`), already applied to
+  // geometry.intrinsics; empty when the intrinsics are the nominal ones.
+  std::filesystem::path lens_calibration;
 };
 
 // Parses the geometry section (keys: docs/rig_geometry.md). Angles in the file are

@@ -1,6 +1,7 @@
 #include "rig/rig_file.h"
 
 #include "common/error.h"
+#include "geometry/lens_calibration_file.h"
 #include "rig/backend_registry.h"
 
 namespace brdfrig::rig {
@@ -44,7 +45,28 @@ geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_fil
     description.geometry = geometry::ParseRigGeometry(geometry);
   }
 
-  BackendOf(root.Required("camera"));
+  const YamlNode camera = root.Required("camera");
+  BackendOf(camera);
+  if (const auto calibration = root.Optional("calibration")) {
+    // Measured values replace the nominal ones, never silently: the file must be of this
+    // camera (geometry/lens_calibration_file.h refuses another one).
+    if (const auto lens = calibration->Optional("lens")) {
+      const std::filesystem::path file = Resolve(base, lens->AsString());
+      std::error_code error;
+      if (!std::filesystem::is_regular_file(file, error)) {
+        lens->Fail("lens calibration not found: " + file.string());
+      }
+      const std::string model = camera.Get("model", std::string());
+      try {
+        description.geometry.intrinsics = geometry::ApplyLensCalibration(
+            geometry::ReadLensCalibration(file), file, description.geometry.intrinsics, model);
+      } catch (const Error& e) {
+        lens->Fail(e.what());
+      }
+      description.lens_calibration = file;
+    }
+    calibration->Finish();
+  }
   if (const auto axes = root.Optional("axes")) {
     if (!axes->IsMap()) axes->Fail("expected a mapping from axis name to its device settings");
     for (const std::string& name : axes->Keys()) {

@@ -10,6 +10,8 @@
 //               profile: oriental_az_direct}   # keys: docs/rig.md
 //     camera_arm: {backend: sim, scene: scenes/default.yaml}
 //   light: {backend: sim, scene: scenes/default.yaml}          # optional (switched light)
+//   calibration: {lens: calibration/lens.json}   # optional: measured intrinsics replace the
+//                                                # geometry's (`brdfrig rig calibrate lens`)
 //
 // Relative paths are relative to the rig file's directory. Every axis named under `axes` must
 // exist in the geometry. Errors name file:line:column.

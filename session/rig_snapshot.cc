@@ -6,6 +6,7 @@
 #include "common/atomic_file.h"
 #include "common/sha256.h"
 #include "common/yaml_reader.h"
+#include "geometry/lens_calibration_file.h"
 #include "session/sqlite_db.h"
 
 namespace brdfrig::session {
@@ -65,6 +66,9 @@ std::vector<SnapshotFile> WriteRigSnapshot(const fs::path& session_dir,
   for (std::size_t i = 1; i < rig.source_files.size(); ++i) {
     add(rig.source_files[i], "geometry", rig.source_files[i].filename().string());
   }
+  if (!rig.lens_calibration.empty()) {
+    add(rig.lens_calibration, "lens_calibration", rig.lens_calibration.filename().string());
+  }
   for (const fs::path& scene : SceneFiles(rig.file)) {
     if (fs::exists(scene)) add(scene, "scene", scene.filename().string());
   }
@@ -86,11 +90,27 @@ geometry::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
   description.source_files.push_back(rig_file);
   const YamlNode root = LoadYamlFile(rig_file.string());
   const YamlNode geometry = root.Required("geometry");
+  SqliteDb db(session_dir / "session.sqlite", SqliteDb::Mode::kReadOnly);
+  // The lens calibration the rig referenced at capture time, from the snapshot's own copy.
+  auto apply_lens_calibration = [&] {
+    const auto calibration = root.Optional("calibration");
+    const auto lens = calibration ? calibration->Optional("lens") : std::nullopt;
+    if (!lens) return;
+    const std::string name = SnapshotName(db, "lens_calibration");
+    const fs::path file = rig_dir / name;
+    if (name.empty() || !fs::exists(file)) {
+      lens->Fail("the session's rig snapshot lacks the lens calibration");
+    }
+    const std::string model = root.Required("camera").Get("model", std::string());
+    description.geometry.intrinsics = geometry::ApplyLensCalibration(
+        geometry::ReadLensCalibration(file), file, description.geometry.intrinsics, model);
+    description.lens_calibration = file;
+  };
   if (!geometry.IsScalar()) {
     description.geometry = geometry::ParseRigGeometry(geometry);
+    apply_lens_calibration();
     return description;
   }
-  SqliteDb db(session_dir / "session.sqlite", SqliteDb::Mode::kReadOnly);
   const std::string name = SnapshotName(db, "geometry");
   const fs::path geometry_file = rig_dir / (name.empty() ? "rig.yaml" : name);
   if (name.empty() || !fs::exists(geometry_file)) {
@@ -99,6 +119,7 @@ geometry::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
   description.geometry =
       geometry::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
   description.source_files.push_back(geometry_file);
+  apply_lens_calibration();
   return description;
 }
 
