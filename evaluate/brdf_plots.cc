@@ -69,6 +69,15 @@ void BrdfPlotOptions::Validate() const {
     throw OptionsError("BRDF plots: max_samples_per_slice = " +
                        std::to_string(max_samples_per_slice) + " must be >= 0");
   }
+  if (min_slices < 1 || max_slices < min_slices || max_slices > 12) {
+    throw OptionsError("BRDF plots: min_slices = " + std::to_string(min_slices) +
+                       ", max_slices = " + std::to_string(max_slices) +
+                       ": need 1 <= min_slices <= max_slices <= 12");
+  }
+  if (min_samples_per_slice < 1) {
+    throw OptionsError("BRDF plots: min_samples_per_slice = " +
+                       std::to_string(min_samples_per_slice) + " must be >= 1");
+  }
   if (!(albedo_step_deg >= 1 && albedo_step_deg <= 45)) {
     throw OptionsError("BRDF plots: albedo_step_deg = " + Fixed(albedo_step_deg, 3) +
                        " must be in [1, 45]");
@@ -95,6 +104,47 @@ double InPlaneViewAngle(const MeasuredSample& sample, double theta_in,
   return std::atan2(-v.dot(t), v.z());
 }
 
+std::vector<double> SliceAngles(const std::vector<MeasuredSample>& samples,
+                                const BrdfPlotOptions& options) {
+  options.Validate();
+  std::vector<double> angles;
+  auto far_from_chosen = [&](double a) {
+    return std::all_of(angles.begin(), angles.end(), [&](double b) {
+      return std::abs(a - b) >= 2 * options.sample_theta_in_deg;
+    });
+  };
+  if (options.slices_where_measured && !samples.empty()) {
+    // In-plane samples per whole degree of θi (the sample's own plane of incidence).
+    std::vector<int> count(90, 0);
+    for (const MeasuredSample& s : samples) {
+      const double theta_in = std::acos(std::clamp(s.l.normalized().z(), -1.0, 1.0));
+      const auto degree = static_cast<int>(std::lround(Degrees(theta_in)));
+      if (degree < 1 || degree > 88) continue;
+      if (std::isfinite(InPlaneViewAngle(s, Radians(degree), options))) ++count[degree];
+    }
+    while (static_cast<int>(angles.size()) < options.max_slices) {
+      int best = -1;
+      for (int d = 1; d <= 88; ++d) {
+        if (count[d] >= options.min_samples_per_slice && far_from_chosen(d) &&
+            (best < 0 || count[d] > count[best])) {
+          best = d;
+        }
+      }
+      if (best < 0) break;
+      angles.push_back(best);
+    }
+  }
+  // No measured plane of incidence: every default slice; else the defaults only fill up.
+  const std::size_t wanted = angles.empty() ? options.slice_theta_in_deg.size()
+                                            : static_cast<std::size_t>(options.min_slices);
+  for (double a : options.slice_theta_in_deg) {
+    if (angles.size() >= wanted) break;
+    if (far_from_chosen(a)) angles.push_back(a);
+  }
+  std::sort(angles.begin(), angles.end());
+  return angles;
+}
+
 BrdfPlots ComputeBrdfPlots(const std::vector<PlotModel>& models,
                            const std::vector<MeasuredSample>& samples,
                            const BrdfPlotOptions& options) {
@@ -117,7 +167,7 @@ BrdfPlots ComputeBrdfPlots(const std::vector<PlotModel>& models,
       "° of the slice's; albedo: brdf::DirectionalAlbedo, mean of R, G, B";
   const brdf::Vec3 n = brdf::Vec3::UnitZ();
   const int steps = static_cast<int>(std::floor(89 / options.theta_out_step_deg));
-  for (double theta_in_deg : options.slice_theta_in_deg) {
+  for (double theta_in_deg : SliceAngles(samples, options)) {
     BrdfSlice slice;
     slice.theta_in_deg = theta_in_deg;
     const double ti = Radians(theta_in_deg);
@@ -211,7 +261,7 @@ ReportSection BrdfPlotsSection(const json& p) {
       {"theta_in (deg)"},
       {}};
   for (const auto& [role, label] : models) peaks.header.push_back(label + " peak");
-  peaks.header.push_back("samples near the plane");
+  peaks.header.push_back("samples near the plane (drawn)");
   for (const json& slice : p.at("slices")) {
     const double theta_in = slice.at("theta_in_deg").get<double>();
     const std::vector<double> theta_out = slice.at("theta_out_deg").get<std::vector<double>>();
@@ -228,13 +278,12 @@ ReportSection BrdfPlotsSection(const json& p) {
     }
     const json& samples = slice.at("samples");
     const int near = samples.at("near").get<int>();
-    row.push_back(std::to_string(near));
+    row.push_back(std::to_string(near) + " (" + std::to_string(samples.at("f").size()) + ")");
     peaks.rows.push_back(row);
     if (near > 0) {
       Series dots;
       const std::size_t drawn = samples.at("f").size();
-      dots.label = "measured (" + std::to_string(drawn) +
-                   (static_cast<int>(drawn) < near ? " of " + std::to_string(near) : "") + ")";
+      dots.label = "measured (" + std::to_string(drawn) + ")";  // the table has all of them
       dots.lines = false;
       dots.colour = "#d62728";
       dots.x = samples.at("theta_out_deg").get<std::vector<double>>();

@@ -22,7 +22,14 @@ namespace brdfrig::evaluate {
 
 struct BrdfPlotOptions {
   std::vector<double> slice_theta_in_deg = {15, 30, 45, 60, 75};  // one plot each, in (0, 90)
-  double theta_out_step_deg = 1;  // the models' curves from −89° to 89°
+  // With measured samples: the slices go where the photos measured the plane of incidence (the
+  // whole degrees of θi holding the most in-plane samples, at least 2·sample_theta_in_deg
+  // apart, up to max_slices), and slice_theta_in_deg only fills up to min_slices. A plan's
+  // photos sit at a few incidence angles; fixed slices would mostly miss them.
+  bool slices_where_measured = true;
+  int min_slices = 3, max_slices = 5;
+  int min_samples_per_slice = 10;  // an angle with fewer in-plane samples gets no slice of its own
+  double theta_out_step_deg = 1;   // the models' curves from −89° to 89°
   // A measured sample is drawn in a slice when its view direction lies within
   // `sample_plane_deg` of that slice's plane of incidence and its incidence angle within
   // `sample_theta_in_deg` of the slice's. One photo spans about ±w/2d ≈ ±6° of θi across a
@@ -72,6 +79,10 @@ struct BrdfPlots {
 // (radians), or NaN when the sample is not near that slice (options' tolerances).
 double InPlaneViewAngle(const MeasuredSample& sample, double theta_in,
                         const BrdfPlotOptions& options);
+
+// The slices' incidence angles (degrees, ascending) for these samples (see the options).
+std::vector<double> SliceAngles(const std::vector<MeasuredSample>& samples,
+                                const BrdfPlotOptions& options);
 
 // Throws OptionsError for bad options, brdfrig::Error for a model without a BRDF or two models
 // of one role.

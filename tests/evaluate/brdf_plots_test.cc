@@ -48,6 +48,7 @@ TEST(BrdfPlotsTest, CurvesAreTheModelsValuesAndSamplesLandOnTheirModel) {
   }
   BrdfPlotOptions options;
   options.slice_theta_in_deg = {30, 60};
+  options.slices_where_measured = false;  // the slices asked for, not the samples' 31°
   options.albedo_step_deg = 15;
   const BrdfPlots plots =
       ComputeBrdfPlots({{"truth", "truth", &truth}, {"fit", "fit", &fit}}, samples, options);
@@ -72,6 +73,30 @@ TEST(BrdfPlotsTest, CurvesAreTheModelsValuesAndSamplesLandOnTheirModel) {
   // The albedo curve is brdf::DirectionalAlbedo's, every 15° from 0° to 75°.
   ASSERT_EQ(plots.albedo_theta_in_deg.size(), 6u);
   EXPECT_NEAR(plots.albedo[0][2], brdf::DirectionalAlbedo(truth, Radians(30)).mean(), 1e-12);
+}
+
+TEST(BrdfPlotsTest, SlicesGoWhereThePhotosMeasuredThePlaneOfIncidence) {
+  const brdf::Lambert truth(brdf::Rgb(0.5, 0.5, 0.5));
+  const brdf::Vec3 n = brdf::Vec3::UnitZ();
+  std::vector<MeasuredSample> samples;
+  auto add = [&](double theta_in, double theta_o, double azimuth_off_plane, int count) {
+    for (int i = 0; i < count; ++i) {
+      const brdf::Vec3 l = Direction(Radians(theta_in + 0.001 * i), 0.3);
+      const brdf::Vec3 v = Direction(Radians(theta_o), 0.3 + M_PI + Radians(azimuth_off_plane));
+      samples.push_back({l, v, truth.Eval(l, v, n)});
+    }
+  };
+  add(22.4, 15, 0, 40);   // a mirror-side photo in the plane of incidence
+  add(72.4, 70, 0, 25);   // another, at grazing light
+  add(40.2, 30, 0, 5);    // too few to get a slice of its own
+  add(80.0, 60, 50, 90);  // many samples, but far out of the plane: no slice
+  const BrdfPlotOptions options;
+  EXPECT_EQ(SliceAngles(samples, options), (std::vector<double>{15, 22, 72}));  // 15: filled up
+  // Without samples (or when asked), the default slices.
+  EXPECT_EQ(SliceAngles({}, options), options.slice_theta_in_deg);
+  BrdfPlotOptions fixed;
+  fixed.slices_where_measured = false;
+  EXPECT_EQ(SliceAngles(samples, fixed), fixed.slice_theta_in_deg);
 }
 
 TEST(BrdfPlotsTest, TheSlicePlotsDrawTheTruthTheFitAndTheSamples) {
