@@ -5,6 +5,7 @@
 #include <string>
 
 #include "apps/brdfrig/board_options.h"
+#include "calibrate/flat_field.h"
 #include "calibrate/lens_calibration.h"
 #include "common/angles.h"
 #include "common/error.h"
@@ -27,6 +28,7 @@ struct RigArgs {
   std::vector<std::string> photos;
   BoardArgs board;
   calibrate::LensCalibrationOptions lens;
+  calibrate::FlatFieldOptions flat;
 };
 
 // Faults for the simulated drive, to rehearse what an operator sees (docs/rig.md, faults).
@@ -141,6 +143,25 @@ void RegisterRigCommands(CLI::App& app) {
         calibrate::CalibrateLens(calibrate::LoadCalibrationPhotos(paths), options);
     geometry::WriteLensCalibration(args->output, result.calibration);
     std::printf("%swrote %s\n", result.ToString().c_str(), args->output.c_str());
+  });
+
+  CLI::App* flat = calibrate->add_subcommand(
+      "flat",
+      "The camera's gain across the frame (vignetting) from linear photos of a uniformly "
+      "radiant card filling the frame; writes the map (EXR, mean 1) and FILE.json");
+  flat->add_option("photos", args->photos, "Photos of the card, or directories of them")
+      ->required();
+  flat->add_option("-o,--output", args->output, "Gain map to write (.exr)")->required();
+  flat->add_option("--degree", args->flat.degree, "Degree of the fitted surface (default 6)");
+  flat->add_option("--max-fit-rms", args->flat.max_fit_rms,
+                   "Largest departure of the photos from a smooth field (default 0.02)");
+  flat->callback([args] {
+    std::vector<std::filesystem::path> paths(args->photos.begin(), args->photos.end());
+    const std::vector<calibrate::CalibrationPhoto> photos = calibrate::LoadCalibrationPhotos(paths);
+    const calibrate::FlatFieldResult result = calibrate::CalibrateFlatField(photos, args->flat);
+    calibrate::WriteFlatField(args->output, result, photos);
+    std::printf("%s\nwrote %s and %s.json\n", result.ToString().c_str(), args->output.c_str(),
+                args->output.c_str());
   });
 }
 
