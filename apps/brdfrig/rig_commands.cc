@@ -7,10 +7,16 @@
 #include "apps/brdfrig/board_options.h"
 #include "calibrate/flat_field.h"
 #include "calibrate/lens_calibration.h"
+#include "calibrate/white_reference.h"
 #include "common/angles.h"
+#include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/exr_io.h"
+#include "common/yaml_reader.h"
+#include "rig/rig_file.h"
 #include "rig/rig_tools.h"
 #include "sim/drive_server_tool.h"
+#include "sim/scene.h"
 #include "simcamera/sim_camera_tool.h"
 
 namespace brdfrig::apps {
@@ -29,6 +35,8 @@ struct RigArgs {
   BoardArgs board;
   calibrate::LensCalibrationOptions lens;
   calibrate::FlatFieldOptions flat;
+  calibrate::WhiteReferenceOptions white;
+  std::string scene, flat_file, position;
 };
 
 // Faults for the simulated drive, to rehearse what an operator sees (docs/rig.md, faults).
@@ -162,6 +170,52 @@ void RegisterRigCommands(CLI::App& app) {
     calibrate::WriteFlatField(args->output, result, photos);
     std::printf("%s\nwrote %s and %s.json\n", result.ToString().c_str(), args->output.c_str(),
                 args->output.c_str());
+  });
+
+  CLI::App* white = calibrate->add_subcommand(
+      "white",
+      "The paper's albedo against a reference tile of known reflectance in the cut-out, from "
+      "linear photos; writes a JSON file (never edits rig.yaml)");
+  white->add_option("photos", args->photos, "Photos, or directories of them")->required();
+  white->add_option("-o,--output", args->output, "File to write (JSON)")->required();
+  white
+      ->add_option("--reference-albedo", args->white.reference_albedo,
+                   "The tile's certified reflectance")
+      ->required();
+  auto* white_rig = white->add_option("--rig", args->rig, "rig.yaml: the geometry");
+  white->add_option("--scene", args->scene, "scene.yaml: the geometry")->excludes(white_rig);
+  white->add_option("--flat", args->flat_file, "Gain map from `rig calibrate flat` (.exr)");
+  white->add_option("--position", args->position,
+                    "Where the arms stood: axis=degrees[,axis=degrees...] (default: at rest)");
+  white->callback([args] {
+    geometry::RigGeometry geometry;
+    if (!args->rig.empty()) {
+      geometry = rig::ReadRigDescription(args->rig).geometry;
+    } else if (!args->scene.empty()) {
+      geometry = geometry::ParseRigGeometry(LoadYamlFile(args->scene).Required("rig"));
+    } else {
+      throw Error("rig calibrate white: give --rig rig.yaml or --scene scene.yaml");
+    }
+    calibrate::WhiteReferenceOptions options = args->white;
+    if (!args->position.empty()) options.positions = sim::ParsePositionsDegrees(args->position);
+    if (!args->flat_file.empty()) {
+      cv::Mat channels[3];
+      cv::split(ReadRadianceExr(args->flat_file), channels);
+      options.flat_field = channels[0];
+    }
+    std::vector<std::filesystem::path> paths(args->photos.begin(), args->photos.end());
+    const std::vector<calibrate::CalibrationPhoto> photos = calibrate::LoadCalibrationPhotos(paths);
+    const calibrate::WhiteReferenceResult result =
+        calibrate::CalibrateWhiteReference(photos, geometry, options);
+    nlohmann::json names = nlohmann::json::array();
+    for (const auto& p : photos) names.push_back(p.name);
+    const nlohmann::json j = {
+        {"format", "brdfrig-white-reference"}, {"version", 1},
+        {"paper_albedo", result.paper_albedo}, {"per_photo", result.per_photo},
+        {"tile_spread", result.tile_spread},   {"reference_albedo", options.reference_albedo},
+        {"flat_field", args->flat_file},       {"photos", names}};
+    WriteFileAtomically(args->output, j.dump(2) + "\n");
+    std::printf("%s\nwrote %s\n", result.ToString().c_str(), args->output.c_str());
   });
 }
 
