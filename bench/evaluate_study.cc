@@ -5,6 +5,7 @@
 //                        [--measured-dir DIR] [--only SUBSTRING] [--docs DIR]
 //                        [--plan mirror|designed] [--positions N] [--model KIND]
 //                        [--materials NAME,NAME,...] [--name NAME] [--albedo-goal X]
+//                        [--brdf-only] [--keep-materials DIR]
 //   bench_evaluate_study photo-count-rungs [--counts 1,2,3,...] [--materials ...] [--set ...]
 // Prints markdown tables and writes SVG plots into DIR (default: docs/figures); the hemisphere
 // study writes DOCS/NAME.md and DOCS/figures/NAME.svg (default DOCS: docs/, NAME:
@@ -209,6 +210,8 @@ struct HemisphereArgs {
   std::vector<std::string> materials;  // exact names (empty: the whole set)
   std::vector<int> counts = {1, 2, 3, 4, 6, 8, 12};
   int positions = 6;
+  bool brdf_only = false;                // sphere test and BRDF figures only (no held-out views)
+  std::filesystem::path keep_materials;  // keep each reconstructed material.json here
   int width = 400, height = 300;
   double albedo_goal = 0;  // 0: 0.05 for the analytic set, else 0.10
   std::filesystem::path measured_dir, docs;
@@ -259,6 +262,8 @@ void Hemisphere(const HemisphereArgs& a) {
   options.height = a.height;
   options.model = a.model;
   options.every_rung = a.model.empty();
+  options.brdf_only = a.brdf_only;
+  options.keep_materials_dir = a.keep_materials;
   options.work_dir = std::filesystem::temp_directory_path() / "brdfrig_hemisphere_study";
   // A measured material is judged by a prior that was never trained on it: the shipped prior's
   // settings rebuilt from every shipped material but that one.
@@ -286,7 +291,10 @@ void Hemisphere(const HemisphereArgs& a) {
   }
   const double goal = a.albedo_goal > 0 ? a.albedo_goal : (a.set == "analytic" ? 0.05 : 0.10);
   const std::string table =
-      a.model.empty() ? jobs::LadderMarkdown(rows, plan, goal) : jobs::MarkdownTable(rows, plan);
+      (a.model.empty() ? jobs::LadderMarkdown(rows, plan, goal) : jobs::MarkdownTable(rows, plan)) +
+      "\nThe written material's glTF version (material.json's `gltf`, reconstruct/gltf_fit.h) on "
+      "the same sphere test against the truth; loss = rung − glTF version:\n\n" +
+      jobs::GltfMarkdown(rows);
   const double wall = Seconds(start);
   std::printf("\n%s\nsummary: %s\nwall time %.1f s\n", table.c_str(),
               jobs::Summarize(rows).Report().c_str(), wall);
@@ -469,6 +477,10 @@ int main(int argc, char** argv) {
       } else if (std::strcmp(argv[i], "--name") == 0 && more) {
         h.name = argv[++i];
         named = true;
+      } else if (std::strcmp(argv[i], "--brdf-only") == 0) {
+        h.brdf_only = true;
+      } else if (std::strcmp(argv[i], "--keep-materials") == 0 && more) {
+        h.keep_materials = argv[++i];
       } else if (std::strcmp(argv[i], "--albedo-goal") == 0 && more) {
         h.albedo_goal = std::stod(argv[++i]);
       } else if (argv[i][0] == '-') {

@@ -1,6 +1,7 @@
 #include "jobs/material_study.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -122,6 +123,11 @@ std::string MaterialStudyRow::Report() const {
       << " dB (min " << Fixed(held_out_min_db, 2) << "), albedo error "
       << Fixed(albedo_error_0_75, 3) << ", BRDF err " << Fixed(result.brdf_error, 3) << ", fit "
       << Fixed(result.reconstruct_time_s, 2) << " s";
+  if (std::isfinite(gltf_sphere_mean_db)) {
+    out << "; glTF version sphere " << Fixed(gltf_sphere_mean_db, 2) << " dB (worst light "
+        << Fixed(gltf_sphere_worst_db, 2) << "), " << Fixed(gltf_vs_rung_db, 2)
+        << " dB against the rung";
+  }
   for (std::size_t i = 0; i < rungs.size(); ++i) {
     const RungRow& r = rungs[i];
     out << "\n    " << r.kind << (r.chosen ? " [chosen]" : "")
@@ -137,6 +143,14 @@ std::string MaterialStudyRow::Report() const {
         << r.size_bytes << " B, fit " << Fixed(r.fit_s, 2) << " s";
   }
   return out.str();
+}
+
+std::string FileStem(const std::string& name) {
+  std::string stem = name;
+  for (char& c : stem) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
+  }
+  return stem;
 }
 
 MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const StudyPlan& plan,
@@ -157,6 +171,10 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
   s.judge_every_rung = options.every_rung;
   s.judge_brdf_only = options.brdf_only;
   if (options.prior_for) s.prior = options.prior_for(material);
+  if (!options.keep_materials_dir.empty()) {
+    fs::create_directories(options.keep_materials_dir);
+    s.keep_material = options.keep_materials_dir / (FileStem(material.name) + ".json");
+  }
   const auto start = std::chrono::steady_clock::now();
   try {
     row.result = RunStudyPoint(s);
@@ -167,6 +185,14 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
   row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Headline(row.result.figures, &row.sphere_mean_db, &row.sphere_worst_db, &row.held_out_mean_db,
            &row.held_out_min_db, &row.albedo_error_0_75);
+  if (row.result.gltf_sphere) {
+    row.gltf_sphere_mean_db = row.result.gltf_sphere->mean_psnr_db;
+    row.gltf_sphere_worst_db = row.result.gltf_sphere->worst_psnr_db;
+    // A number, or text ("inf") where the figure is not finite.
+    const nlohmann::json figure = row.result.material.gltf_fit.value(
+        "/sphere_vs_model/mean_psnr_db"_json_pointer, nlohmann::json());
+    row.gltf_vs_rung_db = figure.is_number() ? figure.get<double>() : NAN;
+  }
   for (const RungFigures& r : row.result.rungs) {
     RungRow rung;
     rung.kind = r.kind;
@@ -301,6 +327,40 @@ std::string MarkdownTable(const std::vector<MaterialStudyRow>& rows, const Study
       << " dB (" << s.worst_sphere_material << "), held-out view "
       << Fixed(s.worst_held_out_min_db, 1) << " dB, albedo error " << Fixed(s.worst_albedo_error, 3)
       << ". Failed: " << s.failed << ".\n";
+  return out.str();
+}
+
+std::string GltfMarkdown(const std::vector<MaterialStudyRow>& rows) {
+  std::ostringstream out;
+  out << "| material | chosen rung | rung vs truth (dB) | glTF version vs truth (dB) | loss (dB) | "
+         "glTF version vs rung (dB) |\n|---|---|---|---|---|---|\n";
+  std::vector<double> rung, gltf, loss, vs_rung;
+  int worse = 0;
+  for (const MaterialStudyRow& r : rows) {
+    out << "| " << r.material.name << " |";
+    if (!r.error.empty()) {
+      out << " failed: " << r.error << " | | | | |\n";
+      continue;
+    }
+    out << " " << brdf::ModelKindName(r.result.material.kind) << " | " << Fixed(r.sphere_mean_db, 1)
+        << " |";
+    if (!std::isfinite(r.gltf_sphere_mean_db)) {
+      out << " no glTF version | | |\n";
+      continue;
+    }
+    const double d = r.sphere_mean_db - r.gltf_sphere_mean_db;
+    out << " " << Fixed(r.gltf_sphere_mean_db, 1) << " | " << Fixed(d, 1) << " | "
+        << Fixed(r.gltf_vs_rung_db, 1) << " |\n";
+    rung.push_back(r.sphere_mean_db);
+    gltf.push_back(r.gltf_sphere_mean_db);
+    loss.push_back(d);
+    if (std::isfinite(r.gltf_vs_rung_db)) vs_rung.push_back(r.gltf_vs_rung_db);
+    worse += d > 0;
+  }
+  out << "| **mean over " << rung.size() << "** | | " << Fixed(Mean(rung), 1) << " | "
+      << Fixed(Mean(gltf), 1) << " | " << Fixed(Mean(loss), 1) << " | " << Fixed(Mean(vs_rung), 1)
+      << " |\n\nThe glTF version is below the chosen rung on " << worse << " of " << rung.size()
+      << " materials.\n";
   return out.str();
 }
 

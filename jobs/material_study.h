@@ -4,6 +4,7 @@
 // adding a set is adding lines; plans are explicit position lists, so a designed plan plugs in.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -51,6 +52,9 @@ struct MaterialStudyOptions {
   // The measured prior for a material (nullptr or empty: the shipped prior). Studies of the
   // shipped measured materials pass the prior built without the material.
   std::function<const prior::MeasuredPrior*(const StudyMaterial&)> prior_for;
+  // When set, each material's reconstructed material.json is kept as
+  // keep_materials_dir/<FileStem(name)>.json.
+  std::filesystem::path keep_materials_dir;
   void Validate() const;  // throws OptionsError
 };
 
@@ -83,8 +87,16 @@ struct MaterialStudyRow {
   // chosen rung's), the index of validation's choice and of the best rung by sphere mean.
   std::vector<RungRow> rungs;
   int chosen = -1, best = -1;
+  // The written material's glTF version on the same sphere test against the truth (NaN when
+  // reconstruct wrote none), and the export's own loss reconstruct recorded: the glTF version
+  // against the chosen rung (material.json's gltf_fit.sphere_vs_model).
+  double gltf_sphere_mean_db = NAN, gltf_sphere_worst_db = NAN;
+  double gltf_vs_rung_db = NAN;
   std::string Report() const;  // one line (per rung with every_rung)
 };
+
+// A study material's name as a file stem: letters, digits, '-' and '.' kept, anything else '_'.
+std::string FileStem(const std::string& name);
 
 MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const StudyPlan& plan,
                                        const MaterialStudyOptions& options);
@@ -111,6 +123,11 @@ std::string MarkdownTable(const std::vector<MaterialStudyRow>& rows, const Study
 // error the summary counts materials within (e.g. 0.05).
 std::string LadderMarkdown(const std::vector<MaterialStudyRow>& rows, const StudyPlan& plan,
                            double albedo_goal);
+
+// The export's loss per material: the written (chosen) rung's sphere mean against the truth
+// beside its glTF version's, the difference, and the glTF version against the rung; then the
+// means over materials.
+std::string GltfMarkdown(const std::vector<MaterialStudyRow>& rows);
 
 // One rung's (or the chosen / best rung's) figures summarised over materials.
 struct RungSummary {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "brdf/gltf_model.h"
 #include "brdf/metrics.h"
 #include "common/angles.h"
 #include "common/error.h"
@@ -55,6 +56,14 @@ void AverageViews(StudyResult* result) {
     result->mean_psnr_whole += v.whole_photo.psnr_db / n;
     result->mean_psnr_sample += v.sample_only.psnr_db / n;
   }
+}
+
+// What exporting costs against the truth: the glTF version reconstruct wrote beside the
+// chosen rung, on the same sphere test as the rung (docs/gltf.md).
+void JudgeGltfVersion(const brdf::Brdf& truth, const brdf::Material& material,
+                      const evaluate::SphereTestOptions& sphere, StudyResult* result) {
+  if (!material.gltf) return;
+  result->gltf_sphere = evaluate::SphereTest(truth, brdf::GltfModel(*material.gltf), sphere);
 }
 
 }  // namespace
@@ -127,6 +136,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   const reconstruct::ReconstructionResult fit = reconstruct::Reconstruct(capture, options);
   result.reconstruct_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!s.keep_material.empty()) brdf::WriteMaterialFile(s.keep_material, fit.material);
   result.slices = static_cast<int>(fit.material.slices.size());
   result.warnings = fit.warnings;
   result.material = fit.material;
@@ -173,6 +183,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     result.brdf_error = result.figures.brdf.log_cosine_error;
     result.views = result.figures.held_out;
     AverageViews(&result);
+    JudgeGltfVersion(*scene->sample.brdf, fit.material, judge.sphere, &result);
     return result;
   }
   if (s.judge) {
@@ -184,6 +195,7 @@ StudyResult RunStudyPoint(const StudySettings& s) {
     result.brdf_error = result.figures.brdf.log_cosine_error;
     result.views = result.figures.held_out;
     AverageViews(&result);
+    JudgeGltfVersion(*scene->sample.brdf, fit.material, judge.sphere, &result);
     return result;
   }
   result.brdf_error = brdf::LogCosineError(*scene->sample.brdf, model);

@@ -50,6 +50,9 @@ struct StudySettings {
   // The measured prior of the `prior` rung (nullptr: the shipped one); a study of a measured
   // material passes one built without it.
   const prior::MeasuredPrior* prior = nullptr;
+  // When set, the reconstructed material.json (with its glTF version) is also written here, so
+  // a study's fits can be exported and drawn by other tools (bench_gltf_consumers).
+  std::filesystem::path keep_material;
 };
 
 // One rung of the ladder judged (StudySettings::judge_every_rung).
@@ -77,6 +80,9 @@ struct StudyResult {
   int positions_used = 0;          // positions measured (target found, photos usable)
   brdf::Material material;         // the fit: its kind and every rung's validation scores (ladder)
   std::vector<RungFigures> rungs;  // with judge_every_rung: every rung of the ladder
+  // With `judge`: the written material's glTF version (material.gltf, reconstruct/gltf_fit.h)
+  // on the sphere test against the truth, as the fit is judged; empty when none was written.
+  std::optional<evaluate::SphereTestResult> gltf_sphere;
   std::vector<std::string> warnings;
 };
 

@@ -82,10 +82,7 @@ TEST_P(BlenderTest, ImportsTheExportedMaterialAndCyclesRendersItCloseToBrdfrig) 
   ASSERT_EQ(exported.status, 0) << exported.output;
 
   const fs::path report = dir_ / "blender.json", image = dir_ / "cycles.exr";
-  const Eigen::Vector3d l = view_.light.normalized();
-  char arguments[512];
-  std::snprintf(arguments, sizeof arguments, "%d %d %.17g %.17g %.17g %.17g %.17g 64", view_.width,
-                view_.height, view_.distance, view_.fov_deg, l.x(), l.y(), l.z());
+  const std::string arguments = BlenderViewArguments(view_, 64);
   const std::string command = "blender -b --factory-startup --python '" +
                               (ConsumersDir() / "blender_check.py").string() + "' -- '" +
                               glb.string() + "' '" + report.string() + "' '" + image.string() +

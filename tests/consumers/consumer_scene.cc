@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <vector>
@@ -89,6 +90,27 @@ evaluate::PsnrResult CompareLinear(const cv::Mat& reference, const cv::Mat& othe
   return evaluate::Psnr(reference, other, mask, values[k],
                         "sphere interior (view cosine >= 0.15), linear radiance, peak = the "
                         "reference's 99th percentile");
+}
+
+cv::Mat ThreeJsImage(const nlohmann::json& result, const std::string& terms) {
+  const int width = result.at("width"), height = result.at("height");
+  const std::vector<float> rgba = result.at("rgba").at(terms).get<std::vector<float>>();
+  cv::Mat image(height, width, CV_32FC3);
+  for (int row = 0; row < height; ++row) {
+    for (int col = 0; col < width; ++col) {
+      const float* p = &rgba[4 * ((height - 1 - row) * width + col)];
+      image.at<cv::Vec3f>(row, col) = {p[2], p[1], p[0]};
+    }
+  }
+  return image;
+}
+
+std::string BlenderViewArguments(const ConsumerView& view, int samples) {
+  const Eigen::Vector3d l = view.light.normalized();
+  char arguments[512];
+  std::snprintf(arguments, sizeof arguments, "%d %d %.17g %.17g %.17g %.17g %.17g %d", view.width,
+                view.height, view.distance, view.fov_deg, l.x(), l.y(), l.z(), samples);
+  return arguments;
 }
 
 std::filesystem::path ConsumersDir() {

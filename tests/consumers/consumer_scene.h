@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -41,6 +42,13 @@ cv::Mat SphereInterior(const ConsumerView& view, double min_cos = 0.15);
 // would set the scale).
 evaluate::PsnrResult CompareLinear(const cv::Mat& reference, const cv::Mat& other,
                                    const cv::Mat& mask);
+
+// One of three_render.mjs's pictures ("spec" or "shipped": RGBA floats, rows bottom-up) as
+// CV_32FC3 B,G,R with row 0 at the top.
+cv::Mat ThreeJsImage(const nlohmann::json& result, const std::string& terms);
+
+// blender_check.py's arguments after the file names: the view and the light, then `samples`.
+std::string BlenderViewArguments(const ConsumerView& view, int samples);
 
 // Where the consumers live: tests/consumers in the source tree, with node_modules installed by
 // scripts/setup.sh. Empty when a tool is missing; `why` then says which.

@@ -57,21 +57,6 @@ std::vector<Case> Cases() {
   return cases;
 }
 
-// One of three.js's pictures ("spec" or "shipped"): RGBA floats, rows bottom-up → B,G,R, row 0
-// at the top.
-cv::Mat ThreeImage(const nlohmann::json& result, const std::string& terms) {
-  const int width = result.at("width"), height = result.at("height");
-  const std::vector<float> rgba = result.at("rgba").at(terms).get<std::vector<float>>();
-  cv::Mat image(height, width, CV_32FC3);
-  for (int row = 0; row < height; ++row) {
-    for (int col = 0; col < width; ++col) {
-      const float* p = &rgba[4 * ((height - 1 - row) * width + col)];
-      image.at<cv::Vec3f>(row, col) = {p[2], p[1], p[0]};
-    }
-  }
-  return image;
-}
-
 class ThreeJsTest : public ::testing::TestWithParam<Case> {
  protected:
   void SetUp() override {
@@ -136,8 +121,8 @@ TEST_P(ThreeJsTest, ReadsTheExportedMaterialAndRendersItAsBrdfrigDoes) {
 
   const cv::Mat ours = RenderWithBrdfrig(brdf::GltfModel(c.params), view_);
   const cv::Mat mask = SphereInterior(view_);
-  const evaluate::PsnrResult strict = CompareLinear(ours, ThreeImage(three, "spec"), mask);
-  const evaluate::PsnrResult as_shipped = CompareLinear(ours, ThreeImage(three, "shipped"), mask);
+  const evaluate::PsnrResult strict = CompareLinear(ours, ThreeJsImage(three, "spec"), mask);
+  const evaluate::PsnrResult as_shipped = CompareLinear(ours, ThreeJsImage(three, "shipped"), mask);
   std::printf(
       "three.js r%s vs brdfrig, %s: %.1f dB (glTF BRDF), %.1f dB (three.js as shipped)"
       " over %ld pixels; %s\n",

@@ -5,7 +5,10 @@
 
 #include <cmath>
 
+#include "brdf/material_file.h"
+#include "evaluate/sphere_test.h"
 #include "jobs/material_study.h"
+#include "jobs/study.h"
 
 namespace brdfrig::jobs {
 namespace {
@@ -33,6 +36,8 @@ TEST(StudyQuickTest, EveryRungJudgedSideBySideOnADesignedPlan) {
   options.judge = QuickJudge();
   options.every_rung = true;
   options.work_dir = fs::temp_directory_path() / "brdfrig_study_ladder_quick";
+  options.keep_materials_dir = fs::temp_directory_path() / "brdfrig_study_ladder_quick_kept";
+  fs::remove_all(options.keep_materials_dir);
   const StudyPlan plan = DesignedPlan(6);
   ASSERT_EQ(plan.positions.size(), 6u);
   const MaterialStudyRow row = RunMaterialStudyPoint({"GGX 0.2", kMaterial}, plan, options);
@@ -61,6 +66,28 @@ TEST(StudyQuickTest, EveryRungJudgedSideBySideOnADesignedPlan) {
   EXPECT_NE(table.find("(chosen)"), std::string::npos) << table;
   EXPECT_NE(table.find("best by sphere"), std::string::npos) << table;
   EXPECT_NE(table.find("| ggx"), std::string::npos) << table;
+
+  // The written material is kept with its glTF version, and that glTF version is judged on the
+  // same sphere test against the truth as the rung.
+  const fs::path kept = options.keep_materials_dir / "GGX_0.2.json";
+  ASSERT_TRUE(fs::exists(kept));
+  const brdf::Material material = brdf::ReadMaterialFile(kept);
+  EXPECT_EQ(material.kind, row.result.material.kind);
+  ASSERT_TRUE(material.gltf.has_value()) << "reconstruct writes the chosen rung's glTF version";
+  StudySettings truth_settings;
+  truth_settings.sample_brdf = kMaterial;
+  const sim::Scene truth =
+      StudyScene(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml", truth_settings);
+  const evaluate::SphereTestResult expected = evaluate::SphereTest(
+      *truth.sample.brdf, brdf::GltfModel(*material.gltf), QuickJudge().sphere);
+  EXPECT_NEAR(row.gltf_sphere_mean_db, expected.mean_psnr_db, 1e-6);
+  EXPECT_NEAR(row.gltf_sphere_worst_db, expected.worst_psnr_db, 1e-6);
+  EXPECT_TRUE(std::isfinite(row.gltf_vs_rung_db)) << material.gltf_fit.dump();
+  const std::string gltf_table = GltfMarkdown({row});
+  EXPECT_NE(gltf_table.find("| GGX 0.2 | " + std::string(brdf::ModelKindName(material.kind))),
+            std::string::npos)
+      << gltf_table;
+  fs::remove_all(options.keep_materials_dir);
 }
 
 }  // namespace
