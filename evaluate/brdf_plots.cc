@@ -69,6 +69,11 @@ void BrdfPlotOptions::Validate() const {
     throw OptionsError("BRDF plots: max_samples_per_slice = " +
                        std::to_string(max_samples_per_slice) + " must be >= 0");
   }
+  if (!(min_slice_separation_deg >= 2 * sample_theta_in_deg && min_slice_separation_deg <= 45)) {
+    throw OptionsError(
+        "BRDF plots: min_slice_separation_deg = " + Fixed(min_slice_separation_deg, 3) +
+        " must be in [2 · sample_theta_in_deg, 45] (slices would share samples)");
+  }
   if (min_slices < 1 || max_slices < min_slices || max_slices > 12) {
     throw OptionsError("BRDF plots: min_slices = " + std::to_string(min_slices) +
                        ", max_slices = " + std::to_string(max_slices) +
@@ -110,7 +115,7 @@ std::vector<double> SliceAngles(const std::vector<MeasuredSample>& samples,
   std::vector<double> angles;
   auto far_from_chosen = [&](double a) {
     return std::all_of(angles.begin(), angles.end(), [&](double b) {
-      return std::abs(a - b) >= 2 * options.sample_theta_in_deg;
+      return std::abs(a - b) >= options.min_slice_separation_deg;
     });
   };
   if (options.slices_where_measured && !samples.empty()) {

@@ -23,10 +23,12 @@ namespace brdfrig::evaluate {
 struct BrdfPlotOptions {
   std::vector<double> slice_theta_in_deg = {15, 30, 45, 60, 75};  // one plot each, in (0, 90)
   // With measured samples: the slices go where the photos measured the plane of incidence (the
-  // whole degrees of θi holding the most in-plane samples, at least 2·sample_theta_in_deg
+  // whole degrees of θi holding the most in-plane samples, at least min_slice_separation_deg
   // apart, up to max_slices), and slice_theta_in_deg only fills up to min_slices. A plan's
-  // photos sit at a few incidence angles; fixed slices would mostly miss them.
+  // photos sit at a few incidence angles; fixed slices would mostly miss them. 10°: one photo
+  // spans about ±6° of θi, so closer slices would mostly show the same photo twice.
   bool slices_where_measured = true;
+  double min_slice_separation_deg = 10;
   int min_slices = 3, max_slices = 5;
   int min_samples_per_slice = 10;  // an angle with fewer in-plane samples gets no slice of its own
   double theta_out_step_deg = 1;   // the models' curves from −89° to 89°
