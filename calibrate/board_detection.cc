@@ -50,8 +50,10 @@ double MedianEdgeWidth(const cv::Mat& detection_image, const std::vector<cv::Poi
 // pixel-aligned board's corner between pixels 99 and 100 comes back at 100, not 99.5; found
 // against the simulator's truth, tests/calibrate/lens_refusal_test). That bias would move the
 // principal point by half a pixel, so the corners are refined again from where they were
-// placed, with a window well inside the smallest square seen.
-void RefineSaddlePoints(const cv::Mat& image, std::vector<cv::Point2f>* corners) {
+// placed, with a window that stays inside the white margin between the corner and the markers
+// of the squares around it (their edges would pull the corner), in the smallest square seen.
+void RefineSaddlePoints(const cv::Mat& image, const CharucoSpec& spec,
+                        std::vector<cv::Point2f>* corners) {
   if (corners->size() < 2) return;
   double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < corners->size(); ++i) {
@@ -59,7 +61,8 @@ void RefineSaddlePoints(const cv::Mat& image, std::vector<cv::Point2f>* corners)
       nearest = std::min(nearest, static_cast<double>(cv::norm((*corners)[i] - (*corners)[j])));
     }
   }
-  const int half = std::clamp(static_cast<int>(0.3 * nearest), 2, 12);
+  const double margin = 0.5 * (spec.square_m - spec.marker_m) / spec.square_m;
+  const int half = std::clamp(static_cast<int>(0.9 * margin * nearest), 2, 12);
   cv::cornerSubPix(image, *corners, cv::Size(half, half), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
 }
@@ -110,7 +113,7 @@ BoardDetection DetectBoard(const cv::Mat& photo, const CharucoSpec& spec, const 
     d.corners.push_back(corners.at<cv::Point2f>(i));
     d.ids.push_back(ids.at<int>(i));
   }
-  RefineSaddlePoints(image, &d.corners);
+  RefineSaddlePoints(image, spec, &d.corners);
   d.edge_width_px = MedianEdgeWidth(image, d.corners);
   return d;
 }

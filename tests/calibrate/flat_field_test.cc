@@ -84,7 +84,7 @@ TEST(FlatFieldTest, OverexposedUnderexposedAndPatternedPhotosAreRefused) {
   dark[0].image /= 40;
   EXPECT_NE(Refusal(dark).find("underexposed"), std::string::npos) << Refusal(dark);
   // A printed board is not a uniform card.
-  const sim::Scene board = sim::LoadScene(testing::ChArUcoScenePath());
+  const sim::Scene board = testing::HalfResolution(sim::LoadScene(testing::ChArUcoScenePath()));
   const std::vector<CalibrationPhoto> patterned = testing::SimulatedBoardPhotos(board, {0});
   EXPECT_NE(Refusal(patterned).find("not uniform"), std::string::npos) << Refusal(patterned);
 }

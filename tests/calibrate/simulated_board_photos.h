@@ -30,6 +30,19 @@ inline std::vector<CalibrationPhoto> SimulatedBoardPhotos(const sim::Scene& scen
   return photos;
 }
 
+// The same camera at half the resolution (same field of view): a quarter of the rendering, for
+// tests whose claim does not depend on the pixel count.
+inline sim::Scene HalfResolution(sim::Scene scene) {
+  geometry::Intrinsics& k = scene.rig.intrinsics;
+  k.width /= 2;
+  k.height /= 2;
+  k.fx *= 0.5;
+  k.fy *= 0.5;
+  k.cx = 0.5 * (k.cx + 0.5) - 0.5;  // pixel centres at integers on both grids
+  k.cy = 0.5 * (k.cy + 0.5) - 0.5;
+  return scene;
+}
+
 inline std::string ChArUcoScenePath() {
   return std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/charuco_board.yaml";
 }
