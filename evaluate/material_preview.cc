@@ -102,7 +102,10 @@ ReportSection MaterialPreviewSection(const json& p, const json* validation_photo
                           "validation photos)") +
       " on a sphere under a directional light at several angles from the view direction, "
       "the sphere test's protocol: " +
-      p.at("protocol").get<std::string>() + ".");
+      p.at("protocol").get<std::string>() +
+      (truth ? "."
+             : " (without a truth the fit is the reference: its own scale, and the glTF "
+               "version's PSNR is against it)."));
   if (p.contains("gltf_note")) s.paragraphs.push_back(p.at("gltf_note").get<std::string>() + ".");
   if (p.contains("gltf_file")) {
     s.paragraphs.push_back("glTF 2.0 export: " + p.at("gltf_file").get<std::string>() + ".");
