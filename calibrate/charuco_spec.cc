@@ -99,8 +99,11 @@ CharucoSpec CharucoSpec::FromJson(const nlohmann::json& j, const std::string& so
   CharucoSpec spec;
   try {
     if (j.at("type").get<std::string>() != "charuco") throw Error("board type is not charuco");
-    spec.squares_x = j.at("squares").at(0).get<int>();
-    spec.squares_y = j.at("squares").at(1).get<int>();
+    // Read as numbers and range-checked before the cast (1e300 would overflow an int).
+    const double x = j.at("squares").at(0).get<double>(), y = j.at("squares").at(1).get<double>();
+    if (!(x >= 3 && x <= 64 && y >= 3 && y <= 64)) throw Error("squares: each in 3..64");
+    spec.squares_x = static_cast<int>(x);
+    spec.squares_y = static_cast<int>(y);
     spec.square_m = j.at("square_m").get<double>();
     spec.marker_m = j.at("marker_m").get<double>();
     spec.dictionary = j.at("dictionary").get<std::string>();

@@ -29,11 +29,21 @@ double Finite(const nlohmann::json& j, const char* key, const std::string& where
   return v;
 }
 
+// An integer field read without nlohmann's unchecked cast from a floating-point number (1e300
+// would overflow an int).
+int Integer(const nlohmann::json& j, const char* key, const std::string& where) {
+  const double v = j.at(key).get<double>();
+  if (!(v >= -1e9 && v <= 1e9) || v != std::floor(v)) {
+    throw Error(where + "." + key + " is not an integer of reasonable size");
+  }
+  return static_cast<int>(v);
+}
+
 Intrinsics ReadIntrinsics(const nlohmann::json& j, const std::string& where, bool with_size) {
   Intrinsics k;
   if (with_size) {
-    k.width = j.at("width").get<int>();
-    k.height = j.at("height").get<int>();
+    k.width = Integer(j, "width", where);
+    k.height = Integer(j, "height", where);
   }
   k.fx = Finite(j, "fx", where);
   k.fy = Finite(j, "fy", where);
@@ -87,7 +97,7 @@ LensCalibration ReadLensCalibration(const std::filesystem::path& path) {
     if (j.at("format").get<std::string>() != kFormat) {
       throw Error(std::string("not a lens calibration (format is not \"") + kFormat + "\")");
     }
-    if (j.at("version").get<int>() != 1) throw Error("version: only version 1 is known");
+    if (Integer(j, "version", "") != 1) throw Error("version: only version 1 is known");
     c.created = j.at("created").get<std::string>();
     c.software = j.value("software", "");
     c.camera_model = j.at("camera").value("model", "");
@@ -99,11 +109,11 @@ LensCalibration ReadLensCalibration(const std::filesystem::path& path) {
     const nlohmann::json& errors = j.at("errors");
     c.rms_px = Finite(errors, "rms_px", "errors");
     c.coverage = Finite(errors, "coverage", "errors");
-    c.corners = errors.at("corners").get<int>();
+    c.corners = Integer(errors, "corners", "errors");
     for (const nlohmann::json& p : errors.at("photos")) {
-      c.photos.push_back({p.at("photo").get<std::string>(), p.at("corners").get<int>(),
-                          Finite(p, "rms_px", "errors.photos[]"),
-                          Finite(p, "edge_width_px", "errors.photos[]")});
+      c.photos.push_back(
+          {p.at("photo").get<std::string>(), Integer(p, "corners", "errors.photos[]"),
+           Finite(p, "rms_px", "errors.photos[]"), Finite(p, "edge_width_px", "errors.photos[]")});
     }
   } catch (const nlohmann::json::exception& e) {
     throw FileError(path.string(), std::string("lens calibration: ") + e.what());
