@@ -4,13 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 #include "common/error.h"
 #include "common/format.h"
-#include "common/parallel.h"
 #include "reconstruct/energy.h"
+#include "reconstruct/fit_schedule.h"
 #include "reconstruct/log_loss.h"
+#include "reconstruct/stage_timer.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -62,37 +64,31 @@ double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-// Fits every rung in `kinds` to `positions`; failed rungs are nullopt with the reason.
-struct FoldFits {
-  std::vector<std::optional<brdf::Material>> materials;
-  std::vector<std::string> errors;
-};
-
-// Every rung is refitted without the held-out position, the slice rungs too: what their slices
-// share (pooled incidence angles, seed_constrained's diffuse floor and energy scale) would
-// otherwise carry the held-out photo into its own prediction, and score the slice rungs
-// better than the rungs that are refitted honestly.
-FoldFits FitAll(const std::vector<brdf::ModelKind>& kinds,
-                const std::vector<const PositionSamples*>& positions, const LadderOptions& options,
-                const std::vector<const brdf::MicrofacetModelParams*>& starts) {
-  FoldFits out;
-  out.materials.reserve(kinds.size());  // fold_ggx points into it
-  const brdf::MicrofacetModelParams* fold_ggx = nullptr;
-  for (std::size_t r = 0; r < kinds.size(); ++r) {
-    try {
-      const brdf::ModelKind kind = kinds[r];
-      const brdf::MicrofacetModelParams* start =
-          kind == brdf::ModelKind::kMicrofacet ? fold_ggx : starts[r];
-      out.materials.push_back(FitRung(kind, positions, options, false, nullptr, start));
-      out.errors.emplace_back();
-      if (kind == brdf::ModelKind::kGgx) fold_ggx = &out.materials.back()->microfacet;
-    } catch (const Error& e) {
-      out.materials.push_back(std::nullopt);
-      out.errors.emplace_back(e.what());
-    }
+// A fit's expected cost relative to the others, for the order of the tasks only (measured on
+// the default capture: the table rung costs most, the GGX rung's six starts next; a fold's
+// analytic fit starts from the full fit and needs far fewer iterations).
+double ExpectedCost(brdf::ModelKind kind, bool fold) {
+  switch (kind) {
+    case brdf::ModelKind::kMicrofacet:
+      return 1.6;
+    case brdf::ModelKind::kGgx:
+      return fold ? 0.35 : 2.2;
+    case brdf::ModelKind::kBeckmann:
+      return fold ? 0.1 : 1.0;
+    case brdf::ModelKind::kSeed:
+    case brdf::ModelKind::kSeedConstrained:
+      return 0.35;
+    default:
+      return 0.05;
   }
-  return out;
 }
+
+// One fit of a fold: nullopt with the reason when it failed.
+struct FoldFit {
+  std::optional<brdf::Material> material;
+  std::string error;
+  double cpu_seconds = 0;
+};
 
 }  // namespace
 
@@ -168,54 +164,104 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
   for (const PositionSamples& p : fit_positions) all.push_back(&p);
 
   LadderResult result;
-  result.rungs.reserve(kinds.size());  // pointers into it are kept below
-  // Every rung on every fit position: the model that is written.
-  const brdf::MicrofacetModelParams* ggx_params = nullptr;
-  for (brdf::ModelKind kind : kinds) {
-    RungResult rung;
-    rung.kind = kind;
-    if (say) say(std::string("fitting the ") + brdf::ModelKindName(kind) + " rung");
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      rung.material = FitRung(kind, all, options, true, &rung,
-                              kind == brdf::ModelKind::kMicrofacet ? ggx_params : nullptr);
-      rung.fitted = true;
-    } catch (const Error& e) {
-      rung.error = e.what();
-      if (say) say(std::string(brdf::ModelKindName(kind)) + " rung failed: " + e.what());
-    }
-    rung.fit_seconds = Seconds(start);
-    if (rung.fitted) rung.size_bytes = ModelBytes(rung.material);
-    result.rungs.push_back(std::move(rung));
-    if (kind == brdf::ModelKind::kGgx && result.rungs.back().fitted) {
-      ggx_params = &result.rungs.back().material.microfacet;
+  const int rungs = static_cast<int>(kinds.size());
+  result.rungs.resize(kinds.size());
+  int ggx = -1;  // the GGX rung's index, if it is on the ladder: it starts the table rung
+  for (int r = 0; r < rungs; ++r) {
+    result.rungs[r].kind = kinds[r];
+    if (kinds[r] == brdf::ModelKind::kGgx) ggx = r;
+  }
+  // Every rung is refitted without the held-out position, the slice rungs too: what their
+  // slices share (pooled incidence angles, seed_constrained's diffuse floor and energy scale)
+  // would otherwise carry the held-out photo into its own prediction, and score the slice
+  // rungs better than the rungs that are refitted honestly.
+  const bool validate = options.validate && options.model.empty() && fit_positions.size() >= 2;
+  const int folds = validate ? static_cast<int>(fit_positions.size()) : 0;
+  std::vector<std::vector<const PositionSamples*>> train(folds);
+  for (int f = 0; f < folds; ++f) {
+    for (int i = 0; i < folds; ++i) {
+      if (i != f) train[f].push_back(&fit_positions[i]);
     }
   }
-  std::vector<const brdf::MicrofacetModelParams*> starts;
-  for (const RungResult& r : result.rungs) {
-    starts.push_back(r.fitted && !brdf::IsSliceKind(r.kind) ? &r.material.microfacet : nullptr);
-  }
+  std::vector<std::vector<FoldFit>> fold_fits(folds, std::vector<FoldFit>(kinds.size()));
+  std::mutex say_mutex;
+  const auto say_locked = [&](const std::string& message) {
+    if (!say) return;
+    std::lock_guard lock(say_mutex);
+    say(message);
+  };
 
-  const bool folds = options.validate && options.model.empty() && fit_positions.size() >= 2;
-  if (folds) {
-    if (say) say("validating: " + std::to_string(fit_positions.size()) + " leave-one-out folds");
-    std::vector<FoldFits> fold_fits(fit_positions.size());
-    ParallelFor(fit_positions.size(), [&](std::size_t begin, std::size_t end) {
-      for (std::size_t f = begin; f < end; ++f) {
-        std::vector<const PositionSamples*> train;
-        for (std::size_t i = 0; i < fit_positions.size(); ++i) {
-          if (i != f) train.push_back(&fit_positions[i]);
+  // Tasks: 0 .. rungs−1 fit every rung on every fit position (the model that is written);
+  // rungs + f·rungs + r fits rung r on fold f's positions.
+  std::vector<FitTask> tasks;
+  for (int r = 0; r < rungs; ++r) {
+    FitTask task;
+    task.expected_cost = ExpectedCost(kinds[r], false);
+    if (kinds[r] == brdf::ModelKind::kMicrofacet && ggx >= 0) task.after = {ggx};
+    task.run = [&, r] {
+      RungResult& rung = result.rungs[r];
+      say_locked(std::string("fitting the ") + brdf::ModelKindName(rung.kind) + " rung");
+      const auto start = std::chrono::steady_clock::now();
+      const double cpu_start = ThreadCpuSeconds();
+      const RungResult* ggx_rung = ggx >= 0 ? &result.rungs[ggx] : nullptr;
+      const brdf::MicrofacetModelParams* ggx_start =
+          rung.kind == brdf::ModelKind::kMicrofacet && ggx_rung && ggx_rung->fitted
+              ? &ggx_rung->material.microfacet
+              : nullptr;
+      try {
+        rung.material = FitRung(rung.kind, all, options, true, &rung, ggx_start);
+        rung.fitted = true;
+      } catch (const Error& e) {
+        rung.error = e.what();
+        say_locked(std::string(brdf::ModelKindName(rung.kind)) + " rung failed: " + e.what());
+      }
+      rung.fit_seconds = Seconds(start);
+      rung.fit_cpu_seconds = ThreadCpuSeconds() - cpu_start;
+      if (rung.fitted) rung.size_bytes = ModelBytes(rung.material);
+    };
+    tasks.push_back(std::move(task));
+  }
+  for (int f = 0; f < folds; ++f) {
+    for (int r = 0; r < rungs; ++r) {
+      FitTask task;
+      const brdf::ModelKind kind = kinds[r];
+      task.expected_cost = ExpectedCost(kind, true);
+      // The analytic rungs start from their full fit; the table rung from the fold's GGX fit.
+      const bool from_full = kind == brdf::ModelKind::kGgx || kind == brdf::ModelKind::kBeckmann;
+      if (from_full) task.after = {r};
+      if (kind == brdf::ModelKind::kMicrofacet && ggx >= 0) task.after = {rungs + f * rungs + ggx};
+      task.run = [&, f, r, kind, from_full] {
+        FoldFit& out = fold_fits[f][r];
+        const double cpu_start = ThreadCpuSeconds();
+        const brdf::MicrofacetModelParams* start = nullptr;
+        if (from_full && result.rungs[r].fitted) start = &result.rungs[r].material.microfacet;
+        if (kind == brdf::ModelKind::kMicrofacet && ggx >= 0 && fold_fits[f][ggx].material) {
+          start = &fold_fits[f][ggx].material->microfacet;
         }
-        fold_fits[f] = FitAll(kinds, train, options, starts);
-      }
-    });
-    for (std::size_t f = 0; f < fit_positions.size(); ++f) {
-      for (std::size_t r = 0; r < kinds.size(); ++r) {
-        const auto& m = fold_fits[f].materials[r];
-        result.rungs[r].fold_positions.push_back(fit_positions[f].index);
-        result.rungs[r].fold_scores.push_back(m ? Score(*m, fit_positions[f], options.microfacet)
-                                                : kInf);
-      }
+        try {
+          out.material = FitRung(kind, train[f], options, false, nullptr, start);
+        } catch (const Error& e) {
+          out.error = e.what();
+        }
+        out.cpu_seconds = ThreadCpuSeconds() - cpu_start;
+      };
+      tasks.push_back(std::move(task));
+    }
+  }
+  if (folds > 0) {
+    say_locked("fitting " + std::to_string(rungs) + " rungs, and each on " + std::to_string(folds) +
+               " leave-one-out folds");
+  }
+  RunFitTasks(tasks);
+
+  for (int f = 0; f < folds; ++f) {
+    for (int r = 0; r < rungs; ++r) {
+      const FoldFit& fit = fold_fits[f][r];
+      RungResult& rung = result.rungs[r];
+      rung.fold_cpu_seconds += fit.cpu_seconds;
+      rung.fold_positions.push_back(fit_positions[f].index);
+      rung.fold_scores.push_back(
+          fit.material ? Score(*fit.material, fit_positions[f], options.microfacet) : kInf);
     }
   }
   for (RungResult& rung : result.rungs) {

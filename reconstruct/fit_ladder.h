@@ -39,8 +39,10 @@ struct RungResult {
   brdf::ModelKind kind = brdf::ModelKind::kSeed;
   brdf::Material material;  // fitted to every fit position (diagnostics in slices / fit)
   bool fitted = false;
-  std::string error;  // why the rung could not be fitted (fitted == false)
-  double fit_seconds = 0;
+  std::string error;                // why the rung could not be fitted (fitted == false)
+  double fit_seconds = 0;           // wall time of the final fit (not in Json(): see below)
+  double fit_cpu_seconds = 0;       // its CPU time
+  double fold_cpu_seconds = 0;      // CPU time of this rung's fits in the folds, summed
   double score = 0;                 // mean held-out score (lower is better); +inf when unscored
   std::vector<int> fold_positions;  // the held-out position of each fold
   std::vector<double> fold_scores;  // LOPO

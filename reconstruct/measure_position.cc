@@ -10,24 +10,10 @@
 #include "common/error.h"
 #include "common/exr_io.h"
 #include "common/format.h"
+#include "reconstruct/stage_timer.h"
 
 namespace brdfrig::reconstruct {
 namespace {
-
-class StageTimer {
- public:
-  StageTimer(std::map<std::string, double>* seconds, std::string stage)
-      : seconds_(seconds), stage_(std::move(stage)), start_(std::chrono::steady_clock::now()) {}
-  ~StageTimer() {
-    (*seconds_)[stage_] +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  std::map<std::string, double>* seconds_;
-  std::string stage_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 struct LoadedBracket {
   std::vector<cv::Mat> images;
@@ -86,15 +72,13 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   report.index = position.index;
   const std::string name = PositionName(position.index);
   HdrImage& hdr = state->hdr;
-  std::map<std::string, double> local_seconds;
-  if (!state->stage_seconds) state->stage_seconds = &local_seconds;
   LoadedBracket bracket;
   {
-    StageTimer timer(state->stage_seconds, "load");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "load");
     bracket = LoadBracket(position, nominal.intrinsics);
   }
   {
-    StageTimer timer(state->stage_seconds, "hdr");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "hdr");
     if (bracket.images[0].depth() == CV_8U && state->response.empty()) {
       state->response = RecoverResponse(bracket.images, bracket.exposures);
     }
@@ -114,7 +98,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   }
   report.invalid_fraction = hdr.invalid_fraction;
   if (!options.hdr_dir.empty()) {
-    StageTimer timer(state->stage_seconds, "write");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "write");
     WriteRadianceExr(options.hdr_dir / (name + ".exr"), hdr.radiance);
     std::vector<std::uint8_t> png;
     cv::imencode(".png", hdr.valid, png);
@@ -124,7 +108,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   const geometry::CameraPose nominal_pose = nominal.CameraAt(position.axis_readings);
   PoseEstimate pose;
   {
-    StageTimer timer(state->stage_seconds, "target");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "target");
     const TargetCorners corners = FindCutoutCorners(hdr.radiance, hdr.valid, nominal.intrinsics,
                                                     nominal_pose, nominal.target, options.target);
     pose = EstimatePose(corners, nominal.intrinsics, nominal.target, nominal_pose, options.target);
@@ -139,13 +123,13 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   data.pose = pose.pose;
   const PlaneView view(nominal.intrinsics, pose.pose);
   {
-    StageTimer timer(state->stage_seconds, "light");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "light");
     report.light = EstimateLight(hdr.radiance, hdr.valid, view, nominal.target,
                                  nominal.LightAt(position.axis_readings), options.light);
   }
   for (const std::string& w : report.light.warnings) report.warnings.push_back(w);
   {
-    StageTimer timer(state->stage_seconds, "radiometry");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "radiometry");
     report.radiometry = CalibrateFromPaper(hdr.radiance, hdr.valid, view, report.light.position,
                                            nominal.target, options.radiometry);
   }
@@ -156,7 +140,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
         "is unreliable (bracket so that the paper is well exposed in one exposure)");
   }
   {
-    StageTimer timer(state->stage_seconds, "samples");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "samples");
     data.samples = ExtractSamples(hdr.radiance, hdr.valid, view, report.light.position,
                                   report.radiometry, nominal.target, options.samples);
   }
@@ -166,7 +150,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
                 " clipped in every exposure): add a shorter exposure");
   }
   if (report.light.from_highlight && options.light_refine.enabled) {
-    StageTimer timer(state->stage_seconds, "light");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "light");
     const LightRefinement refined = RefineLight(
         hdr.radiance, hdr.valid, view, nominal.target, options.samples, report.light.position,
         report.radiometry, FitSlice(data.samples, options.fit), options.light_refine);
@@ -188,7 +172,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
     }
   }
   {
-    StageTimer timer(state->stage_seconds, "samples");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "samples");
     data.directions = ExtractDirectionSamples(hdr.radiance, hdr.valid, view, report.light.position,
                                               report.radiometry, nominal.target, options.samples,
                                               options.directions);
@@ -198,7 +182,6 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   report.samples = data.samples.pixels_used;
   report.direction_samples = static_cast<int>(data.directions.samples.size());
   report.used = true;
-  if (state->stage_seconds == &local_seconds) state->stage_seconds = nullptr;
   return data;
 }
 

@@ -64,7 +64,8 @@ struct MeasuredPosition {
 struct MeasureState {
   cv::Mat response;  // recovered once per capture for non-linear (8-bit) photos
   HdrImage hdr;      // one buffer reused by every position's merge: the last position's HDR
-  std::map<std::string, double>* stage_seconds = nullptr;
+  std::map<std::string, double>* stage_seconds = nullptr;      // wall, per stage
+  std::map<std::string, double>* stage_cpu_seconds = nullptr;  // process CPU, per stage
 };
 
 std::string PositionName(int index);  // "p03"

@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "common/format.h"
 #include "common/sha256.h"
+#include "reconstruct/stage_timer.h"
 
 namespace brdfrig::reconstruct {
 namespace {
@@ -142,6 +143,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
                          options.directions,   options.fit,        options.hdr_dir};
   MeasureState state;
   state.stage_seconds = &result.stage_seconds;
+  state.stage_cpu_seconds = &result.stage_cpu_seconds;
   std::vector<PositionSamples> fit_positions, validation_positions;
   for (const CaptureSet::LeftOut& left : capture.left_out) {
     if (!options.use_positions.empty() && !Contains(options.use_positions, left.index)) continue;
@@ -208,10 +210,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   ladder_options.prior = options.prior;
   ladder_options.validate = options.validate;
   {
-    const auto start = std::chrono::steady_clock::now();
+    StageTimer timer(&result.stage_seconds, &result.stage_cpu_seconds, "fit");
     result.ladder = FitLadder(fit_positions, validation_positions, ladder_options, say);
-    result.stage_seconds["fit"] +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   const RungResult& chosen = result.ladder.rungs[result.ladder.chosen];
   for (const std::string& w : chosen.warnings) result.warnings.push_back(w);
@@ -260,6 +260,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   // The chosen rung's glTF version and what exporting it costs (docs/gltf.md).
   {
     const auto start = std::chrono::steady_clock::now();
+    StageTimer timer(nullptr, &result.stage_cpu_seconds, "gltf");
     AddGltfVersion(&material, options.gltf,
                    options.gltf.source == "samples" ? PoolDirectionSamples(fit_positions)
                                                     : std::vector<DirectionSample>{});

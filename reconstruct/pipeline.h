@@ -57,7 +57,8 @@ struct ReconstructionResult {
   std::vector<PositionReport> positions;
   LadderResult ladder;  // every rung fitted, with its scores; material is the chosen one
   std::vector<std::string> warnings;
-  std::map<std::string, double> stage_seconds;  // wall time per stage, summed over positions
+  std::map<std::string, double> stage_seconds;      // wall time per stage, summed over positions
+  std::map<std::string, double> stage_cpu_seconds;  // CPU time of the process (every thread)
   // The capture's validation positions (photos, exposures, axis readings), left out of the fit:
   // what a report compares with the fit's rendering.
   std::vector<CapturePosition> validation;
