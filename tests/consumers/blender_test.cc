@@ -16,10 +16,10 @@
 #include <string>
 
 #include "brdf/gltf_model.h"
-#include "brdf/material_file.h"
 #include "common/exr_io.h"
 #include "tests/common/run_brdfrig.h"
 #include "tests/consumers/consumer_scene.h"
+#include "tests/consumers/export_gltf.h"
 
 namespace brdfrig::testing {
 namespace {
@@ -71,14 +71,8 @@ class BlenderTest : public ::testing::TestWithParam<Case> {
 
 TEST_P(BlenderTest, ImportsTheExportedMaterialAndCyclesRendersItCloseToBrdfrig) {
   const Case& c = GetParam();
-  brdf::Material material;
-  material.kind = brdf::ModelKind::kGltf;
-  material.gltf = c.params;
-  const fs::path json = dir_ / "material.json";
-  brdf::WriteMaterialFile(json, material);
-  const fs::path glb = dir_ / (c.name + ".glb");
-  const CommandResult exported =
-      RunBrdfrig("export '" + json.string() + "' -o '" + glb.string() + "'");
+  CommandResult exported;
+  const fs::path glb = ExportGltfMaterial(c.params, dir_, c.name, &exported);
   ASSERT_EQ(exported.status, 0) << exported.output;
 
   const fs::path report = dir_ / "blender.json", image = dir_ / "cycles.exr";
