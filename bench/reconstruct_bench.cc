@@ -203,17 +203,30 @@ void StageTimes(int width, int height, std::filesystem::path dir, int repeats) {
       width, height, capture.positions.size(),
       capture.positions.empty() ? 0 : capture.positions.size() * capture.positions[0].frames.size(),
       repeats);
+  const auto stage = [&](const char* name, double* wall, double* cpu) {
+    const auto w = result.stage_seconds.find(name);
+    const auto c = result.stage_cpu_seconds.find(name);
+    *wall = w == result.stage_seconds.end() ? 0.0 : w->second;
+    *cpu = c == result.stage_cpu_seconds.end() ? 0.0 : c->second;
+  };
   std::printf("| stage | wall (s) | CPU (s) |\n|---|---:|---:|\n");
-  double wall_sum = 0, cpu_sum = 0;
-  for (const char* stage :
-       {"load", "hdr", "target", "light", "radiometry", "samples", "fit", "gltf"}) {
-    const auto w = result.stage_seconds.find(stage);
-    const auto c = result.stage_cpu_seconds.find(stage);
-    const double wall = w == result.stage_seconds.end() ? 0.0 : w->second;
-    const double cpu = c == result.stage_cpu_seconds.end() ? 0.0 : c->second;
+  double wall_sum = 0, cpu_sum = 0, wall = 0, cpu = 0;
+  stage("measure", &wall, &cpu);
+  std::printf("| measure (every position, %d threads) | %.3f | %.3f |\n", DefaultThreadCount(),
+              wall, cpu);
+  wall_sum += wall;
+  cpu_sum += cpu;
+  // Within it, summed over positions: positions are measured side by side, so these walls add
+  // up to more than the measure stage's, and their CPU is the measuring threads' own.
+  for (const char* name : {"load", "hdr", "target", "light", "radiometry", "samples"}) {
+    stage(name, &wall, &cpu);
+    std::printf("| &nbsp;&nbsp;%s (summed over positions) | %.3f | %.3f |\n", name, wall, cpu);
+  }
+  for (const char* name : {"fit", "gltf"}) {
+    stage(name, &wall, &cpu);
     wall_sum += wall;
     cpu_sum += cpu;
-    std::printf("| %s | %.3f | %.3f |\n", stage, wall, cpu);
+    std::printf("| %s | %.3f | %.3f |\n", name, wall, cpu);
   }
   std::printf("| other | %.3f | %.3f |\n", run.wall - wall_sum, run.cpu - cpu_sum);
   std::printf("| **total** | **%.3f** | **%.3f** |\n", run.wall, run.cpu);

@@ -74,15 +74,16 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   HdrImage& hdr = state->hdr;
   LoadedBracket bracket;
   {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "load");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "load", CpuClock::kThread);
     bracket = LoadBracket(position, nominal.intrinsics);
   }
   {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "hdr");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "hdr", CpuClock::kThread);
     if (bracket.images[0].depth() == CV_8U && state->response.empty()) {
       state->response = RecoverResponse(bracket.images, bracket.exposures);
     }
     MergeBracketInto(bracket.images, bracket.exposures, state->response, &hdr, options.hdr);
+    state->merged = true;
   }
   if (!bracket.non_finite.empty()) {
     report.non_finite_pixels = cv::countNonZero(bracket.non_finite);
@@ -98,7 +99,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   }
   report.invalid_fraction = hdr.invalid_fraction;
   if (!options.hdr_dir.empty()) {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "write");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "write", CpuClock::kThread);
     WriteRadianceExr(options.hdr_dir / (name + ".exr"), hdr.radiance);
     std::vector<std::uint8_t> png;
     cv::imencode(".png", hdr.valid, png);
@@ -108,7 +109,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   const geometry::CameraPose nominal_pose = nominal.CameraAt(position.axis_readings);
   PoseEstimate pose;
   {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "target");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "target", CpuClock::kThread);
     const TargetCorners corners = FindCutoutCorners(hdr.radiance, hdr.valid, nominal.intrinsics,
                                                     nominal_pose, nominal.target, options.target);
     pose = EstimatePose(corners, nominal.intrinsics, nominal.target, nominal_pose, options.target);
@@ -123,13 +124,14 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   data.pose = pose.pose;
   const PlaneView view(nominal.intrinsics, pose.pose);
   {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "light");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "light", CpuClock::kThread);
     report.light = EstimateLight(hdr.radiance, hdr.valid, view, nominal.target,
                                  nominal.LightAt(position.axis_readings), options.light);
   }
   for (const std::string& w : report.light.warnings) report.warnings.push_back(w);
   {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "radiometry");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "radiometry",
+                     CpuClock::kThread);
     report.radiometry = CalibrateFromPaper(hdr.radiance, hdr.valid, view, report.light.position,
                                            nominal.target, options.radiometry);
   }
@@ -140,7 +142,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
         "is unreliable (bracket so that the paper is well exposed in one exposure)");
   }
   {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "samples");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "samples", CpuClock::kThread);
     data.samples = ExtractSamples(hdr.radiance, hdr.valid, view, report.light.position,
                                   report.radiometry, nominal.target, options.samples);
   }
@@ -150,7 +152,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
                 " clipped in every exposure): add a shorter exposure");
   }
   if (report.light.from_highlight && options.light_refine.enabled) {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "light");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "light", CpuClock::kThread);
     const LightRefinement refined = RefineLight(
         hdr.radiance, hdr.valid, view, nominal.target, options.samples, report.light.position,
         report.radiometry, FitSlice(data.samples, options.fit), options.light_refine);
@@ -172,7 +174,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
     }
   }
   {
-    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "samples");
+    StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "samples", CpuClock::kThread);
     data.directions = ExtractDirectionSamples(hdr.radiance, hdr.valid, view, report.light.position,
                                               report.radiometry, nominal.target, options.samples,
                                               options.directions);

@@ -62,10 +62,13 @@ struct MeasuredPosition {
 
 // State shared by the positions of one capture.
 struct MeasureState {
-  cv::Mat response;  // recovered once per capture for non-linear (8-bit) photos
-  HdrImage hdr;      // one buffer reused by every position's merge: the last position's HDR
-  std::map<std::string, double>* stage_seconds = nullptr;      // wall, per stage
-  std::map<std::string, double>* stage_cpu_seconds = nullptr;  // process CPU, per stage
+  cv::Mat response;     // recovered once per capture for non-linear (8-bit) photos
+  HdrImage hdr;         // one buffer reused by every position's merge: the last position's HDR
+  bool merged = false;  // a bracket was merged (with 8-bit photos: `response` is recovered)
+  std::map<std::string, double>* stage_seconds = nullptr;  // wall, per stage
+  // CPU of the measuring thread per stage (positions may be measured on several threads at
+  // once; the HDR merge's helper threads are not counted).
+  std::map<std::string, double>* stage_cpu_seconds = nullptr;
 };
 
 std::string PositionName(int index);  // "p03"

@@ -2,13 +2,18 @@
 #include "common/angles.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/format.h"
+#include "common/parallel.h"
 #include "common/sha256.h"
 #include "reconstruct/stage_timer.h"
 
@@ -141,9 +146,6 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   MeasureOptions measure{options.hdr,          options.target,     options.light,
                          options.light_refine, options.radiometry, options.samples,
                          options.directions,   options.fit,        options.hdr_dir};
-  MeasureState state;
-  state.stage_seconds = &result.stage_seconds;
-  state.stage_cpu_seconds = &result.stage_cpu_seconds;
   std::vector<PositionSamples> fit_positions, validation_positions;
   for (const CaptureSet::LeftOut& left : capture.left_out) {
     if (!options.use_positions.empty() && !Contains(options.use_positions, left.index)) continue;
@@ -152,6 +154,15 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     report.skipped_reason = left.reason;
     result.positions.push_back(report);
   }
+  // The positions to measure, in capture order; each is measured into its own slot.
+  struct Measured {
+    const CapturePosition* position = nullptr;
+    bool validation = false;
+    std::optional<MeasuredPosition> data;
+    std::string skipped;  // why it could not be measured
+    std::map<std::string, double> seconds, cpu_seconds;
+  };
+  std::vector<Measured> measured;
   for (const CapturePosition& position : capture.positions) {
     const bool validation =
         position.validation || Contains(options.validation_positions, position.index);
@@ -160,25 +171,73 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
         !validation) {
       continue;
     }
-    const std::string name = PositionName(position.index);
-    say(name + ": merging " + std::to_string(position.frames.size()) + " exposures");
+    measured.push_back({&position, validation, std::nullopt, {}, {}, {}});
+  }
+  std::mutex say_mutex;
+  const auto measure_one = [&](Measured& m, MeasureState* state) {
+    const std::string name = PositionName(m.position->index);
+    {
+      std::lock_guard lock(say_mutex);
+      say(name + ": merging " + std::to_string(m.position->frames.size()) + " exposures");
+    }
+    state->stage_seconds = &m.seconds;
+    state->stage_cpu_seconds = &m.cpu_seconds;
     try {
-      VerifyRecordedHashes(position);
-      MeasuredPosition data = MeasurePosition(position, capture.nominal, measure, &state);
-      PositionSamples samples{position.index, std::move(data.samples), std::move(data.directions),
-                              data.report.warnings};
-      (validation ? validation_positions : fit_positions).push_back(std::move(samples));
-      result.positions.push_back(std::move(data.report));
+      VerifyRecordedHashes(*m.position);
+      m.data = MeasurePosition(*m.position, capture.nominal, measure, state);
     } catch (const OutputError&) {
       throw;  // a debug file that cannot be written fails the run, never drops the position
     } catch (const Error& e) {
-      PositionReport report;
-      report.index = position.index;
-      report.skipped_reason = e.what();
-      result.warnings.push_back(name + " skipped: " + e.what());
+      m.skipped = e.what();
+      std::lock_guard lock(say_mutex);
       say(name + " skipped: " + e.what());
-      result.positions.push_back(report);
     }
+  };
+  // Positions are independent once the photos' response is known (8-bit photos: recovered from
+  // the first bracket merged, and shared by the rest): measured one by one until a bracket has
+  // been merged, then the rest on every thread, each with its own copy of that state (its own
+  // HDR buffer). The results are those of measuring them in order. (A capture that mixed
+  // linear and 8-bit brackets, a linear one first, would recover the response once per thread.)
+  std::size_t next = 0;
+  {
+    StageTimer timer(&result.stage_seconds, &result.stage_cpu_seconds, "measure");
+    MeasureState state;
+    while (next < measured.size() && !state.merged) measure_one(measured[next++], &state);
+    std::atomic<std::size_t> claim = next;
+    const std::size_t rest = measured.size() - next;
+    const int workers = static_cast<int>(std::min<std::size_t>(rest, DefaultThreadCount()));
+    if (rest > 0) {
+      ParallelFor(
+          static_cast<std::size_t>(workers),
+          [&](std::size_t begin, std::size_t end) {
+            for (std::size_t w = begin; w < end; ++w) {
+              MeasureState own;
+              own.response = state.response;
+              own.merged = state.merged;
+              for (std::size_t i = claim++; i < measured.size(); i = claim++) {
+                measure_one(measured[i], &own);
+              }
+            }
+          },
+          workers);
+    }
+  }
+  for (Measured& m : measured) {
+    for (const auto& [stage, s] : m.seconds) result.stage_seconds[stage] += s;
+    for (const auto& [stage, s] : m.cpu_seconds) result.stage_cpu_seconds[stage] += s;
+    if (!m.data) {
+      PositionReport report;
+      report.index = m.position->index;
+      report.skipped_reason = m.skipped;
+      result.warnings.push_back(PositionName(m.position->index) + " skipped: " + m.skipped);
+      result.positions.push_back(report);
+      continue;
+    }
+    MeasuredPosition& data = *m.data;
+    PositionSamples samples{m.position->index, std::move(data.samples), std::move(data.directions),
+                            data.report.warnings};
+    (m.validation ? validation_positions : fit_positions).push_back(std::move(samples));
+    result.positions.push_back(std::move(data.report));
   }
   if (result.positions.empty()) {
     throw Error(capture.name + ": no capture positions to reconstruct from");

@@ -57,8 +57,10 @@ struct ReconstructionResult {
   std::vector<PositionReport> positions;
   LadderResult ladder;  // every rung fitted, with its scores; material is the chosen one
   std::vector<std::string> warnings;
-  std::map<std::string, double> stage_seconds;      // wall time per stage, summed over positions
-  std::map<std::string, double> stage_cpu_seconds;  // CPU time of the process (every thread)
+  // Wall and CPU time per stage: "measure" (every position, wall and process CPU) and within
+  // it load, hdr, target, light, radiometry, samples (summed over positions, which are measured
+  // on several threads at once; CPU of the measuring thread), then "fit" and "gltf" (process).
+  std::map<std::string, double> stage_seconds, stage_cpu_seconds;
   // The capture's validation positions (photos, exposures, axis readings), left out of the fit:
   // what a report compares with the fit's rendering.
   std::vector<CapturePosition> validation;
