@@ -122,6 +122,7 @@ brdf::Material FitRung(brdf::ModelKind kind, const std::vector<const PositionSam
   if (kind == brdf::ModelKind::kPrior) return FitPriorRung(positions, options.prior);
   MicrofacetFitOptions mf = options.microfacet;
   mf.covariance = mf.covariance && final;
+  mf.albedo_diagnostic = mf.albedo_diagnostic && final;
   const std::vector<DirectionSample> samples = Pool(positions);
   MicrofacetFit fit;
   if (kind == brdf::ModelKind::kMicrofacet) {
@@ -290,7 +291,12 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
   // slices are kept as the paper wrote them and may): it is chosen only when forced, or when no
   // rung conserves energy (then the ladder says so).
   for (RungResult& rung : result.rungs) {
-    if (rung.fitted) rung.max_albedo = MaxAlbedo(*rung.material.Model()).albedo;
+    if (!rung.fitted) continue;
+    // The microfacet rungs' fits computed it for their diagnostics (the same model).
+    const nlohmann::json& fit = rung.material.fit;
+    rung.max_albedo = !brdf::IsSliceKind(rung.kind) && fit.contains("albedo_max")
+                          ? fit["albedo_max"].get<double>()
+                          : MaxAlbedo(*rung.material.Model()).albedo;
   }
   // A material unlike the prior's training set is left to the data and the compact forms.
   const auto choose = [&](bool strict) {

@@ -380,7 +380,7 @@ void Finish(const PreparedSet& set, const std::vector<DirectionSample>& samples,
   d["diffuse_observed"] = fit->diffuse_observed;
   d["epsilon"] = set.eps;
   d["energy_scale"] = fit->energy_scale;
-  d["albedo_max"] = MaxAlbedo(model).albedo;
+  if (options.albedo_diagnostic) d["albedo_max"] = MaxAlbedo(model).albedo;
 }
 
 void RequireSamples(const PreparedSet& set) {

@@ -36,7 +36,10 @@ struct MicrofacetFitOptions {
   double epsilon_fraction = 0.01;  // of the 10th percentile of f·cos_i (log_loss.h)
   double loss_scale = 0.25;        // Huber scale in ln units (0 = plain least squares)
   int max_iterations = 100;
-  bool covariance = true;    // parameter std-devs (analytic rungs)
+  bool covariance = true;  // parameter std-devs (analytic rungs)
+  // The fit's albedo_max diagnostic (directional albedo over 0°–85°, written in Material::fit);
+  // the ladder's folds turn it off: their fits are only scored, never written.
+  bool albedo_diagnostic = true;
   bool energy_check = true;  // scale the specular term down where the albedo exceeds 1
   void Validate() const;
 };

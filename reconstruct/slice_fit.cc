@@ -176,6 +176,9 @@ SliceFit FitSlice(const BrdfSamples& samples, const SliceFitOptions& options,
     solver.parameter_tolerance = options.parameter_tolerance;
     solver.gradient_tolerance = 1e-14;
     solver.num_threads = 1;
+    // No projected line search after each trust-region step (bounded problem: h): it evaluates
+    // the Jacobian once more per step; see SolverOptions in microfacet_fit.cc.
+    solver.max_num_line_search_step_size_iterations = 0;
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
 
