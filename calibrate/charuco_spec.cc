@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <opencv2/aruco/charuco.hpp>
 #include <utility>
 
 #include "common/error.h"

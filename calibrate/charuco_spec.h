@@ -10,10 +10,18 @@
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
-#include <opencv2/aruco/charuco.hpp>
+#include <opencv2/core/cvstd_wrapper.hpp>
 #include <string>
 
 #include "common/yaml_reader.h"
+
+// Declared, not included: <opencv2/aruco/charuco.hpp> brings calib3d and features2d, and this
+// header reaches most of the project through sim/scene.h. Code that draws or detects a board
+// includes it itself.
+namespace cv::aruco {
+class Dictionary;
+class CharucoBoard;
+}  // namespace cv::aruco
 
 namespace brdfrig::calibrate {
 

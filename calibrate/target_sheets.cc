@@ -9,6 +9,7 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <opencv2/aruco/charuco.hpp>
 
 #include "common/error.h"
 

@@ -3,10 +3,13 @@ add_library(brdfrig_options INTERFACE)
 add_library(brdfrig::options ALIAS brdfrig_options)
 target_compile_options(brdfrig_options INTERFACE -Wall -Wextra -Wpedantic -Wshadow
                                                  -Wnon-virtual-dtor -Wno-missing-field-initializers)
-# GCC 12's -Wrestrict/-Wstringop-overflow fire on std::string concatenation inlined at -O3
-# (GCC bug 105329/105651): false positives in libstdc++, not in our code.
+# GCC 12's -Wrestrict, -Wstringop-overflow, -Wstringop-overread and -Warray-bounds fire on
+# std::string concatenation inlined at -O3 (GCC bug 105329/105651): false positives in
+# libstdc++, not in our code. GCC hides some as a system header's, but not once the header comes
+# from a precompiled one (cmake/BrdfrigPrecompiledHeaders.cmake).
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
-  target_compile_options(brdfrig_options INTERFACE -Wno-restrict -Wno-stringop-overflow)
+  target_compile_options(brdfrig_options INTERFACE -Wno-restrict -Wno-stringop-overflow
+                                                   -Wno-array-bounds -Wno-stringop-overread)
 endif()
 if(BRDFRIG_WERROR)
   target_compile_options(brdfrig_options INTERFACE -Werror)
@@ -72,4 +75,5 @@ function(brdfrig_add_library name)
   target_compile_definitions(brdfrig_${name} PRIVATE
                              BRDFRIG_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                              BRDFRIG_VERSION="${PROJECT_VERSION}")
+  target_precompile_headers(brdfrig_${name} REUSE_FROM brdfrig_library_headers)
 endfunction()

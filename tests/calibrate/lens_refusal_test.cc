@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <opencv2/aruco/charuco.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "calibrate/board_detection.h"
