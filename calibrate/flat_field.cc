@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "common/exr_io.h"
 #include "common/option_check.h"
+#include "common/utc_time.h"
 
 namespace brdfrig::calibrate {
 namespace {
@@ -143,6 +144,8 @@ void WriteFlatField(const std::string& path, const FlatFieldResult& result,
   for (const CalibrationPhoto& p : photos) names.push_back(p.name);
   const nlohmann::json j = {{"format", "brdfrig-flat-field"},
                             {"version", 1},
+                            {"created", NowUtcIso8601()},
+                            {"software", std::string("brdfrig ") + BRDFRIG_VERSION},
                             {"gain_map", std::filesystem::path(path).filename().string()},
                             {"size", {result.gain.cols, result.gain.rows}},
                             {"photos", names},

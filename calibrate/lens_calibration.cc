@@ -13,6 +13,7 @@
 
 #include "common/error.h"
 #include "common/option_check.h"
+#include "common/utc_time.h"
 
 namespace brdfrig::calibrate {
 namespace {
@@ -34,15 +35,6 @@ std::vector<fs::path> ImagesIn(const fs::path& dir) {
   }
   std::sort(images.begin(), images.end());
   return images;
-}
-
-std::string NowIso8601() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return buffer;
 }
 
 std::string Fixed(double v, int decimals) {
@@ -184,7 +176,7 @@ LensCalibrationResult CalibrateLens(const std::vector<CalibrationPhoto>& photos,
       cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12));
 
   geometry::LensCalibration& c = result.calibration;
-  c.created = NowIso8601();
+  c.created = NowUtcIso8601();
   c.software = std::string("brdfrig ") + BRDFRIG_VERSION;
   c.camera_model = options.camera_model;
   c.camera_serial = options.camera_serial;

@@ -8,8 +8,9 @@
 # target that reuses a header set reads all of it.
 #
 # A reused header set must be compiled with its users' flags: each set's target links the same
-# brdfrig::options and carries the same definitions as its users (clang refuses a header set
-# whose definitions differ; one the user adds, such as BRDFRIG_BINARY, is fine). The fuzz
+# brdfrig::options and carries the same definitions as its users (GCC refuses a header set
+# compiled with a definition its user lacks, clang one whose value differs; one the user adds,
+# such as BRDFRIG_BINARY, is fine for both). The fuzz
 # targets add -fsanitize=fuzzer and compile without. CMake's own switch turns every set off
 # (cmake -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON), which also shows a file that relies on a
 # header it does not include. Users: target_precompile_headers(TARGET REUSE_FROM SET).
@@ -28,7 +29,9 @@ function(brdfrig_add_header_set name)
   cmake_parse_arguments(ARG "PROGRAMS" "" "HEADERS;DEPS;DEFINITIONS" ${ARGN})
   add_library(${name} STATIC ${brdfrig_pch_anchor})
   target_link_libraries(${name} PRIVATE brdfrig::options ${ARG_DEPS})
-  target_compile_definitions(${name} PRIVATE ${ARG_DEFINITIONS})
+  if(ARG_DEFINITIONS)
+    target_compile_definitions(${name} PRIVATE ${ARG_DEFINITIONS})
+  endif()
   target_precompile_headers(${name} PRIVATE ${ARG_HEADERS})
   if(ARG_PROGRAMS)
     set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE OFF)
@@ -42,11 +45,10 @@ brdfrig_add_header_set(brdfrig_library_headers HEADERS ${brdfrig_common_pch_head
                        DEPS ${brdfrig_pch_deps}
                        DEFINITIONS BRDFRIG_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                    BRDFRIG_VERSION="${PROJECT_VERSION}")
-# The command (apps/) and the benchmarks.
+# The command (apps/, which defines BRDFRIG_VERSION) and the benchmarks (BRDFRIG_SOURCE_DIR):
+# no definitions, as a user may add one the set lacks but not lack one the set has.
 brdfrig_add_header_set(brdfrig_program_headers PROGRAMS HEADERS ${brdfrig_common_pch_headers}
-                       DEPS ${brdfrig_pch_deps}
-                       DEFINITIONS BRDFRIG_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-                                   BRDFRIG_VERSION="${PROJECT_VERSION}")
+                       DEPS ${brdfrig_pch_deps})
 # The tests (brdfrig_add_test): the programs' set and GoogleTest.
 if(BRDFRIG_BUILD_TESTS)
   brdfrig_add_header_set(brdfrig_test_headers PROGRAMS

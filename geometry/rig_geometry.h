@@ -15,6 +15,7 @@
 
 #include "common/yaml_reader.h"
 #include "geometry/camera.h"
+#include "geometry/rig_calibration.h"
 
 namespace brdfrig::geometry {
 
@@ -65,9 +66,12 @@ struct RigDescription {
   // Files a session must copy to be reprocessable on its own: the rig file itself and, when
   // the geometry lives in another file, that file.
   std::vector<std::filesystem::path> source_files;
-  // The lens calibration rig.yaml references (`calibration: {lens: FILE}`), already applied to
-  // geometry.intrinsics; empty when the intrinsics are the nominal ones.
-  std::filesystem::path lens_calibration;
+  // The calibrations rig.yaml references (`calibration:`), already applied to `geometry`
+  // (geometry/rig_calibration.h); each empty where the values are the nominal ones.
+  RigCalibrationFiles calibration;
+  // When the lab last changed the rig (rig.yaml `changed:`, ISO 8601): a calibration made
+  // before it no longer describes the rig (`brdfrig rig calibrate status`). "" = not said.
+  std::string changed;
 };
 
 // Parses the geometry section (keys: docs/rig_geometry.md). Angles in the file are

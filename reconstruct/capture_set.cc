@@ -62,6 +62,7 @@ CaptureSet LoadSessionCapture(const std::filesystem::path& dir) {
   CaptureSet set;
   set.name = dir.string();
   set.nominal = contents.rig.geometry;
+  set.calibration = contents.rig.calibration;
   if (contents.exit_status != "success") {
     set.warnings.push_back("session " + contents.name + " ended '" + contents.exit_status + "'" +
                            (contents.stop_reason.empty() ? "" : " (" + contents.stop_reason + ")") +

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,10 @@ struct CaptureSet {
     std::string reason;
   };
   std::vector<LeftOut> left_out;
+  // The rig's calibrations, already applied to `nominal` but the flat field, which the
+  // measurement applies (sessions: from the rig snapshot). nullopt where the geometry is the
+  // scene's own truth (`brdfrig simulate` output), which needs none.
+  std::optional<geometry::RigCalibrationFiles> calibration;
 };
 
 // Reads the photos/capture.json written by `brdfrig simulate` (or `brdfrig capture --sim`),

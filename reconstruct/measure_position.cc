@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "common/exr_io.h"
 #include "common/format.h"
+#include "reconstruct/gain_map.h"
 #include "reconstruct/stage_timer.h"
 
 namespace brdfrig::reconstruct {
@@ -83,6 +84,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
       state->response = RecoverResponse(bracket.images, bracket.exposures);
     }
     MergeBracketInto(bracket.images, bracket.exposures, state->response, &hdr, options.hdr);
+    ApplyGainMap(state->gain, &hdr);
     state->merged = true;
   }
   if (!bracket.non_finite.empty()) {

@@ -62,6 +62,7 @@ struct MeasuredPosition {
 
 // State shared by the positions of one capture.
 struct MeasureState {
+  cv::Mat gain;         // the rig's flat field (gain_map.h); empty: none
   cv::Mat response;     // recovered once per capture for non-linear (8-bit) photos
   HdrImage hdr;         // one buffer reused by every position's merge: the last position's HDR
   bool merged = false;  // a bracket was merged (with 8-bit photos: `response` is recovered)

@@ -15,6 +15,7 @@
 #include "common/format.h"
 #include "common/parallel.h"
 #include "common/sha256.h"
+#include "reconstruct/gain_map.h"
 #include "reconstruct/stage_timer.h"
 
 namespace brdfrig::reconstruct {
@@ -202,6 +203,9 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   {
     StageTimer timer(&result.stage_seconds, &result.stage_cpu_seconds, "measure");
     MeasureState state;
+    if (capture.calibration && !capture.calibration->flat.empty()) {
+      state.gain = ReadGainMap(capture.calibration->flat, capture.nominal.intrinsics);
+    }
     while (next < measured.size() && !state.merged) measure_one(measured[next++], &state);
     std::atomic<std::size_t> claim = next;
     const std::size_t rest = measured.size() - next;
@@ -212,6 +216,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
           [&](std::size_t begin, std::size_t end) {
             for (std::size_t w = begin; w < end; ++w) {
               MeasureState own;
+              own.gain = state.gain;
               own.response = state.response;
               own.merged = state.merged;
               for (std::size_t i = claim++; i < measured.size(); i = claim++) {
@@ -315,6 +320,17 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   // The sample's size for the glTF export's tile (reconstruct/gltf_export.h).
   provenance["cutout_m"] = {capture.nominal.target.cutout_width,
                             capture.nominal.target.cutout_height};
+  // What the reconstruction trusted about the rig: each calibration's file and hash, or the
+  // nominal values it ran on instead (docs/calibration.md).
+  if (capture.calibration) {
+    provenance["calibration"] = capture.calibration->Provenance();
+    const std::string nominal = capture.calibration->NominalOnes();
+    if (!nominal.empty()) {
+      result.warnings.push_back("ran on the rig's nominal values for: " + nominal +
+                                " (no calibration in rig.yaml's `calibration:`; "
+                                "docs/calibration.md)");
+    }
+  }
   material.provenance = provenance;
   // The chosen rung's glTF version and what exporting it costs (docs/gltf.md).
   {

@@ -1,7 +1,8 @@
 #include "rig/rig_file.h"
 
 #include "common/error.h"
-#include "geometry/lens_calibration_file.h"
+#include "common/utc_time.h"
+#include "geometry/rig_calibration.h"
 #include "rig/backend_registry.h"
 
 namespace brdfrig::rig {
@@ -48,22 +49,24 @@ geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_fil
   const YamlNode camera = root.Required("camera");
   BackendOf(camera);
   if (const auto calibration = root.Optional("calibration")) {
-    // Measured values replace the nominal ones, never silently: the file must be of this
-    // camera (geometry/lens_calibration_file.h refuses another one).
-    if (const auto lens = calibration->Optional("lens")) {
-      const std::filesystem::path file = Resolve(base, lens->AsString());
-      std::error_code error;
-      if (!std::filesystem::is_regular_file(file, error)) {
-        lens->Fail("lens calibration not found: " + file.string());
+    // Measured values replace the nominal ones, never silently: each file must be there and of
+    // this camera (geometry/rig_calibration.h refuses another one).
+    geometry::RigCalibrationFiles& files = description.calibration;
+    for (auto [key, file] : {std::pair{"lens", &files.lens}, std::pair{"flat", &files.flat},
+                             std::pair{"white", &files.white}}) {
+      if (const auto entry = calibration->Optional(key)) {
+        *file = Resolve(base, entry->AsString());
+        std::error_code error;
+        if (!std::filesystem::is_regular_file(*file, error)) {
+          entry->Fail(std::string(key) + " calibration not found: " + file->string());
+        }
       }
-      const std::string model = camera.Get("model", std::string());
-      try {
-        description.geometry.intrinsics = geometry::ApplyLensCalibration(
-            geometry::ReadLensCalibration(file), file, description.geometry.intrinsics, model);
-      } catch (const Error& e) {
-        lens->Fail(e.what());
-      }
-      description.lens_calibration = file;
+    }
+    try {
+      geometry::ApplyRigCalibration(files, camera.Get("model", std::string()),
+                                    &description.geometry);
+    } catch (const Error& e) {
+      calibration->Fail(e.what());
     }
     calibration->Finish();
   }
@@ -78,6 +81,12 @@ geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_fil
     }
   }
   if (const auto light = root.Optional("light")) BackendOf(*light);
+  if (const auto changed = root.Optional("changed")) {
+    description.changed = changed->AsString();
+    if (!ParseUtcIso8601(description.changed)) {
+      changed->Fail("expected a date, 2026-12-02, or a UTC time, 2026-12-02T10:00:00Z");
+    }
+  }
   root.Finish();
   return description;
 }

@@ -10,8 +10,11 @@
 //               profile: oriental_az_direct}   # keys: docs/rig.md
 //     camera_arm: {backend: sim, scene: scenes/default.yaml}
 //   light: {backend: sim, scene: scenes/default.yaml}          # optional (switched light)
-//   calibration: {lens: calibration/lens.json}   # optional: measured intrinsics replace the
-//                                                # geometry's (`brdfrig rig calibrate lens`)
+//   calibration: {lens: calibration/lens.json,   # optional, each: measured values replace the
+//                 flat: calibration/flat.exr,    # nominal ones (`brdfrig rig calibrate lens|
+//                 white: calibration/white.json} # flat|white`, geometry/rig_calibration.h)
+//   changed: 2026-11-30   # optional: when the rig last changed (lamp, lens, arm moved); older
+//                         # calibrations are stale (`brdfrig rig calibrate status`)
 //
 // Relative paths are relative to the rig file's directory. Every axis named under `axes` must
 // exist in the geometry. Errors name file:line:column.

@@ -6,7 +6,7 @@
 #include "common/atomic_file.h"
 #include "common/sha256.h"
 #include "common/yaml_reader.h"
-#include "geometry/lens_calibration_file.h"
+#include "geometry/rig_calibration.h"
 #include "session/sqlite_db.h"
 
 namespace brdfrig::session {
@@ -46,6 +46,18 @@ std::string SnapshotName(SqliteDb& db, const std::string& role) {
   return q.Step() ? q.Text(0) : std::string();
 }
 
+// Each calibration rig.yaml may reference (`calibration:` key), with its snapshot role.
+struct CalibrationRole {
+  fs::path* file;
+  const char* role;
+  const char* key;
+};
+std::vector<CalibrationRole> CalibrationRoles(geometry::RigCalibrationFiles& files) {
+  return {{&files.lens, "lens_calibration", "lens"},
+          {&files.flat, "flat_field", "flat"},
+          {&files.white, "white_reference", "white"}};
+}
+
 }  // namespace
 
 std::vector<SnapshotFile> WriteRigSnapshot(const fs::path& session_dir,
@@ -66,8 +78,9 @@ std::vector<SnapshotFile> WriteRigSnapshot(const fs::path& session_dir,
   for (std::size_t i = 1; i < rig.source_files.size(); ++i) {
     add(rig.source_files[i], "geometry", rig.source_files[i].filename().string());
   }
-  if (!rig.lens_calibration.empty()) {
-    add(rig.lens_calibration, "lens_calibration", rig.lens_calibration.filename().string());
+  geometry::RigCalibrationFiles calibration = rig.calibration;
+  for (const auto& [file, role, key] : CalibrationRoles(calibration)) {
+    if (!file->empty()) add(*file, role, file->filename().string());
   }
   for (const fs::path& scene : SceneFiles(rig.file)) {
     if (fs::exists(scene)) add(scene, "scene", scene.filename().string());
@@ -91,24 +104,26 @@ geometry::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
   const YamlNode root = LoadYamlFile(rig_file.string());
   const YamlNode geometry = root.Required("geometry");
   SqliteDb db(session_dir / "session.sqlite", SqliteDb::Mode::kReadOnly);
-  // The lens calibration the rig referenced at capture time, from the snapshot's own copy.
-  auto apply_lens_calibration = [&] {
+  // The calibrations the rig referenced at capture time, from the snapshot's own copies.
+  auto apply_calibration = [&] {
     const auto calibration = root.Optional("calibration");
-    const auto lens = calibration ? calibration->Optional("lens") : std::nullopt;
-    if (!lens) return;
-    const std::string name = SnapshotName(db, "lens_calibration");
-    const fs::path file = rig_dir / name;
-    if (name.empty() || !fs::exists(file)) {
-      lens->Fail("the session's rig snapshot lacks the lens calibration");
+    if (!calibration) return;
+    geometry::RigCalibrationFiles& files = description.calibration;
+    for (const auto& [file, role, key] : CalibrationRoles(files)) {
+      if (!calibration->Optional(key)) continue;
+      const std::string name = SnapshotName(db, role);
+      if (name.empty() || !fs::exists(rig_dir / name)) {
+        calibration->Fail(std::string("the session's rig snapshot lacks the ") + key +
+                          " calibration");
+      }
+      *file = rig_dir / name;
     }
     const std::string model = root.Required("camera").Get("model", std::string());
-    description.geometry.intrinsics = geometry::ApplyLensCalibration(
-        geometry::ReadLensCalibration(file), file, description.geometry.intrinsics, model);
-    description.lens_calibration = file;
+    geometry::ApplyRigCalibration(files, model, &description.geometry);
   };
   if (!geometry.IsScalar()) {
     description.geometry = geometry::ParseRigGeometry(geometry);
-    apply_lens_calibration();
+    apply_calibration();
     return description;
   }
   const std::string name = SnapshotName(db, "geometry");
@@ -119,7 +134,7 @@ geometry::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
   description.geometry =
       geometry::ParseRigGeometry(LoadYamlFile(geometry_file.string()).Required("rig"));
   description.source_files.push_back(geometry_file);
-  apply_lens_calibration();
+  apply_calibration();
   return description;
 }
 
@@ -140,6 +155,10 @@ std::vector<std::string> RigChangesSince(const fs::path& session_dir,
   };
   compare(rig.file, "rig");
   if (rig.source_files.size() > 1) compare(rig.source_files[1], "geometry");
+  geometry::RigCalibrationFiles calibration = rig.calibration;
+  for (const auto& [file, role, key] : CalibrationRoles(calibration)) {
+    if (!file->empty()) compare(*file, role);
+  }
   return changes;
 }
 

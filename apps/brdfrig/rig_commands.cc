@@ -12,7 +12,10 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/exr_io.h"
+#include "common/utc_time.h"
 #include "common/yaml_reader.h"
+#include "geometry/white_reference_file.h"
+#include "rig/calibration_status.h"
 #include "rig/rig_file.h"
 #include "rig/rig_tools.h"
 #include "sim/drive_server_tool.h"
@@ -126,6 +129,17 @@ void RegisterRigCommands(CLI::App& app) {
 
   CLI::App* calibrate = rig->add_subcommand("calibrate", "Calibrate the rig from photos");
   calibrate->require_subcommand(1);
+  CLI::App* status = calibrate->add_subcommand(
+      "status",
+      "What rig.yaml's calibrations are, when each was made, with what error, and which are "
+      "older than the rig's last change (`changed:`); exit status 3 when any is missing or "
+      "stale");
+  status->add_option("--rig", args->rig, "Rig file (rig.yaml)")->required();
+  status->callback([args] {
+    const rig::CalibrationStatus result = rig::ReadCalibrationStatus(args->rig);
+    std::printf("%s", result.ToString().c_str());
+    if (!result.Current()) throw CLI::RuntimeError(3);
+  });
   CLI::App* lens = calibrate->add_subcommand(
       "lens",
       "Intrinsics and distortion from photos of the printed ChArUco board; writes a "
@@ -207,14 +221,16 @@ void RegisterRigCommands(CLI::App& app) {
     const std::vector<calibrate::CalibrationPhoto> photos = calibrate::LoadCalibrationPhotos(paths);
     const calibrate::WhiteReferenceResult result =
         calibrate::CalibrateWhiteReference(photos, geometry, options);
-    nlohmann::json names = nlohmann::json::array();
-    for (const auto& p : photos) names.push_back(p.name);
-    const nlohmann::json j = {
-        {"format", "brdfrig-white-reference"}, {"version", 1},
-        {"paper_albedo", result.paper_albedo}, {"per_photo", result.per_photo},
-        {"tile_spread", result.tile_spread},   {"reference_albedo", options.reference_albedo},
-        {"flat_field", args->flat_file},       {"photos", names}};
-    WriteFileAtomically(args->output, j.dump(2) + "\n");
+    geometry::WhiteReference reference;
+    reference.created = NowUtcIso8601();
+    reference.software = std::string("brdfrig ") + BRDFRIG_VERSION;
+    reference.paper_albedo = result.paper_albedo;
+    reference.reference_albedo = options.reference_albedo;
+    reference.tile_spread = result.tile_spread;
+    reference.per_photo = result.per_photo;
+    reference.flat_field = args->flat_file;
+    for (const auto& p : photos) reference.photos.push_back(p.name);
+    geometry::WriteWhiteReference(args->output, reference);
     std::printf("%s\nwrote %s\n", result.ToString().c_str(), args->output.c_str());
   });
 }

@@ -38,7 +38,7 @@ TEST(SessionLensCalibrationTest, SessionReadsBackWithItsSnapshotOfTheLensCalibra
   EXPECT_DOUBLE_EQ(s.rig.geometry.intrinsics.fy, 80.5);
   EXPECT_DOUBLE_EQ(s.rig.geometry.intrinsics.cx, 32.5);
   EXPECT_DOUBLE_EQ(s.rig.geometry.intrinsics.k1, -0.05);
-  EXPECT_EQ(s.rig.lens_calibration.parent_path(), options.output_dir / "rig");
+  EXPECT_EQ(s.rig.calibration.lens.parent_path(), options.output_dir / "rig");
 }
 
 }  // namespace
