@@ -6,7 +6,7 @@
 #            tests labelled "accuracy" or "consumers" (release only, see tests/CMakeLists.txt),
 #            then
 #            every libFuzzer target of the same build for a smoke time over its seed corpus
-#            (BRDFRIG_FUZZ_SECONDS, default 10; see docs/fuzzing.md)
+#            (BRDFRIG_FUZZ_SECONDS, default 5; see docs/fuzzing.md)
 #   tsan     ThreadSanitizer build of the threaded parts' tests (ctest label "threads")
 # One or more steps alone:  scripts/test.sh release   (the quick check while developing)
 #                           scripts/test.sh asan tsan
@@ -30,7 +30,7 @@ for step in "${steps[@]}"; do
         # of their own; the exporter they read is instrumented in the brdf tests) run in release
         # only (tests/CMakeLists.txt, tests/consumers/CMakeLists.txt).
         ctest --preset asan -LE 'hardware|accuracy|consumers'
-        bash scripts/fuzz.sh "${BRDFRIG_FUZZ_SECONDS:-10}"
+        bash scripts/fuzz.sh "${BRDFRIG_FUZZ_SECONDS:-5}"
       else
         ctest --preset "$step" -LE hardware
       fi

@@ -88,6 +88,14 @@ TEST_F(RigCliTest, CheckMoveAndShootAgainstASimDriveThenCtrlCStopsIt) {
   EXPECT_NE(stopped.output.find("final position -750 steps"), std::string::npos) << stopped.output;
 }
 
+// `rig calibrate status`: 3 while any value is nominal, with the table saying which.
+TEST_F(RigCliTest, CalibrateStatusExitsThreeWhileTheRigRunsOnNominalValues) {
+  const Result status = Brdfrig("rig calibrate status --rig " + WriteRig(1));
+  EXPECT_EQ(status.status, 3) << status.output;
+  EXPECT_NE(status.output.find("lens             NOMINAL"), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find("recalibrate"), std::string::npos) << status.output;
+}
+
 TEST_F(RigCliTest, CheckExitsNonZeroWithTheReasonWhenADriveIsMissing) {
   int free_port = 0;
   {
