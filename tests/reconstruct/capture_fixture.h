@@ -2,6 +2,8 @@
 // reduced resolution, a sample of our choosing, an ideal or a realistic sensor.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -24,6 +26,20 @@ inline brdf::Material FlatSliceTruth() {
   brdf::Material m;
   m.slices = {slice};
   return m;
+}
+
+// The largest relative error of the peak (a1) and tail (h) heights over every slice and
+// channel of `fitted` against `truth`'s one slice (FlatSliceTruth).
+inline double WorstSliceError(const brdf::Material& fitted, const brdf::Material& truth) {
+  const brdf::Slice& want = truth.slices[0];
+  double worst = 0;
+  for (const brdf::Slice& slice : fitted.slices) {
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, std::abs(slice.channel[c].a1 / want.channel[c].a1 - 1));
+      worst = std::max(worst, std::abs(slice.channel[c].h / want.channel[c].h - 1));
+    }
+  }
+  return worst;
 }
 
 // The seed rung alone (today's slice fit, no ladder): for tests of the measuring stages and of

@@ -92,20 +92,6 @@ TEST(SessionCapture, AbortedSessionUsesItsCompletePositionsAndSaysSo) {
   EXPECT_EQ(result.warnings.front(), capture.warnings.front());
 }
 
-// The largest relative departure of the fitted slices' levels (a1, h) from the truth's.
-double WorstLevelError(const brdf::Material& fitted) {
-  const brdf::Material truth = testing::FlatSliceTruth();
-  const brdf::Slice& want = truth.slices[0];
-  double worst = 0;
-  for (const brdf::Slice& slice : fitted.slices) {
-    for (int c = 0; c < 3; ++c) {
-      worst = std::max(worst, std::abs(slice.channel[c].a1 / want.channel[c].a1 - 1));
-      worst = std::max(worst, std::abs(slice.channel[c].h / want.channel[c].h - 1));
-    }
-  }
-  return worst;
-}
-
 // The gain of the scene's polynomial vignetting (sim/sensor.cc) at every pixel, scaled to mean 1
 // as `brdfrig rig calibrate flat` writes its maps.
 cv::Mat TrueGainMap(const geometry::Intrinsics& k, double a1, double a2) {
@@ -141,8 +127,8 @@ TEST(SessionCapture, FlatFieldCalibrationUndoesTheCamerasVignetting) {
   EXPECT_EQ(capture.calibration->flat.parent_path(), s.dir / "session" / "rig");
   const ReconstructionResult calibrated = Reconstruct(capture, testing::SeedOnly());
 
-  const double without = WorstLevelError(nominal.material);
-  const double with = WorstLevelError(calibrated.material);
+  const double without = testing::WorstSliceError(nominal.material, testing::FlatSliceTruth());
+  const double with = testing::WorstSliceError(calibrated.material, testing::FlatSliceTruth());
   std::printf("worst level error: %.4f %% without the flat field, %.4f %% with it\n", 100 * without,
               100 * with);
   EXPECT_LT(with, 2e-3);

@@ -35,19 +35,6 @@ const char* kPlan =
     "exposures: [0.001, 0.008, 0.0666667]\n"
     "settle_s: 0\n";
 
-// Largest relative error of A1 and h over every slice and channel.
-double WorstSliceError(const brdf::Material& fitted, const brdf::Material& truth) {
-  const brdf::Slice& want = truth.slices[0];
-  double worst = 0;
-  for (const brdf::Slice& slice : fitted.slices) {
-    for (int c = 0; c < 3; ++c) {
-      worst = std::max(worst, std::abs(slice.channel[c].a1 / want.channel[c].a1 - 1));
-      worst = std::max(worst, std::abs(slice.channel[c].h / want.channel[c].h - 1));
-    }
-  }
-  return worst;
-}
-
 TEST(PtpipReconstruct, HardwareBackendCaptureRecoversTheMaterialAsWellAsASimulatedOne) {
   const fs::path dir = fs::temp_directory_path() / "brdfrig_ptpip_reconstruct";
   fs::remove_all(dir);
@@ -84,10 +71,10 @@ TEST(PtpipReconstruct, HardwareBackendCaptureRecoversTheMaterialAsWellAsASimulat
     EXPECT_EQ(p.frames[0].file.extension(), ".dng");
   }
   const auto options = reconstruct::testing::SeedOnly();
-  const double sim_error =
-      WorstSliceError(reconstruct::Reconstruct(from_sim, options).material, truth);
-  const double hardware_error =
-      WorstSliceError(reconstruct::Reconstruct(from_hardware, options).material, truth);
+  const double sim_error = reconstruct::testing::WorstSliceError(
+      reconstruct::Reconstruct(from_sim, options).material, truth);
+  const double hardware_error = reconstruct::testing::WorstSliceError(
+      reconstruct::Reconstruct(from_hardware, options).material, truth);
   std::printf("worst relative error of A1 and h: simulated backends %.2e, hardware backends %.2e\n",
               sim_error, hardware_error);
   // One part in a thousand: what reconstruct/session_capture_test asks of a simulated session
