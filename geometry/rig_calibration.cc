@@ -2,7 +2,6 @@
 
 #include <vector>
 
-#include "common/error.h"
 #include "common/sha256.h"
 #include "geometry/lens_calibration_file.h"
 #include "geometry/rig_geometry.h"
@@ -56,10 +55,6 @@ void ApplyRigCalibration(const RigCalibrationFiles& files, const std::string& ca
   }
   if (!files.white.empty()) {
     geometry->target.paper_albedo = ReadWhiteReference(files.white).paper_albedo;
-  }
-  std::error_code error;
-  if (!files.flat.empty() && !std::filesystem::is_regular_file(files.flat, error)) {
-    throw FileError(files.flat.string(), "flat field (gain map) not found");
   }
 }
 

@@ -25,8 +25,9 @@ struct RigCalibrationFiles {
   std::string NominalOnes() const;
 };
 
-// Applies the lens and white calibrations to `geometry` and checks that the flat field is there.
-// Throws FileError naming the calibration file: unreadable or malformed, or of another camera
+// Applies the lens and white calibrations to `geometry` (the flat field is the measurement's,
+// reconstruct/gain_map.h; the callers have checked that each file is there). Throws FileError
+// naming the calibration file: unreadable or malformed, or of another camera
 // (`camera_model` as rig.yaml names it, "" when it does not).
 void ApplyRigCalibration(const RigCalibrationFiles& files, const std::string& camera_model,
                          RigGeometry* geometry);

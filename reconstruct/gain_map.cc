@@ -1,7 +1,7 @@
 #include "reconstruct/gain_map.h"
 
+#include <opencv2/core.hpp>
 #include <string>
-#include <vector>
 
 #include "common/error.h"
 #include "common/exr_io.h"
@@ -16,24 +16,19 @@ cv::Mat ReadGainMap(const std::filesystem::path& path, const geometry::Intrinsic
                         std::to_string(image.rows) + ", the camera's photos " +
                         std::to_string(intrinsics.width) + "x" + std::to_string(intrinsics.height));
   }
-  std::vector<cv::Mat> channels;
-  cv::split(image, channels);
-  cv::Mat gain = channels[0];
   // NaN fails both comparisons, so it is caught with the out-of-range gains.
-  const cv::Mat in_range = (gain >= 0.05) & (gain <= 20);
-  if (cv::countNonZero(in_range) != static_cast<int>(gain.total())) {
+  cv::Mat in_range;
+  cv::inRange(image, cv::Scalar::all(0.05), cv::Scalar::all(20), in_range);
+  if (cv::countNonZero(in_range) != static_cast<int>(image.total())) {
     throw FileError(path.string(),
                     "flat field: gains must be finite and within [0.05, 20] (a map of relative "
                     "gain, mean 1, as `brdfrig rig calibrate flat` writes)");
   }
-  return gain;
+  return image;
 }
 
 void ApplyGainMap(const cv::Mat& gain, HdrImage* hdr) {
-  if (gain.empty()) return;
-  cv::Mat gain3;
-  cv::merge(std::vector<cv::Mat>{gain, gain, gain}, gain3);
-  cv::divide(hdr->radiance, gain3, hdr->radiance);
+  if (!gain.empty()) cv::divide(hdr->radiance, gain, hdr->radiance);
 }
 
 }  // namespace brdfrig::reconstruct

@@ -14,11 +14,12 @@
 
 namespace brdfrig::reconstruct {
 
-// Reads the gain map (EXR; its first channel). Throws FileError naming the file: unreadable, a
-// size other than the camera's (`intrinsics`), a gain not finite or outside [0.05, 20].
+// Reads the gain map (EXR, CV_32FC3: `rig calibrate flat` writes the one map in every channel;
+// a map per channel is used as it is). Throws FileError naming the file: unreadable, a size
+// other than the camera's (`intrinsics`), a gain not finite or outside [0.05, 20].
 cv::Mat ReadGainMap(const std::filesystem::path& path, const geometry::Intrinsics& intrinsics);
 
-// Divides the radiance by `gain` (CV_32F, the image's size); nothing for an empty gain.
+// Divides the radiance by `gain` (ReadGainMap's, the image's size); nothing for an empty gain.
 void ApplyGainMap(const cv::Mat& gain, HdrImage* hdr);
 
 }  // namespace brdfrig::reconstruct

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "common/json_parse.h"
 #include "common/utc_time.h"
 #include "geometry/lens_calibration_file.h"
