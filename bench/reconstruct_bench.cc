@@ -25,6 +25,7 @@
 #include "brdf/material_file.h"
 #include "brdf/sphere_figure.h"
 #include "common/atomic_file.h"
+#include "common/median.h"
 #include "common/parallel.h"
 #include "common/sha256.h"
 #include "reconstruct/batch.h"
@@ -81,11 +82,6 @@ double LogError(const cv::Mat& estimate, const cv::Mat& truth) {
     }
   }
   return std::sqrt(sum / std::max(count, 1L));
-}
-
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 void MergeComparison(int width, int height, int repeats) {

@@ -11,6 +11,9 @@ namespace brdfrig::brdf {
 using Vec3 = Eigen::Vector3d;
 using Rgb = Eigen::Array3d;
 
+// Rgb's channels as files and messages name them.
+inline constexpr const char* kChannelNames[3] = {"red", "green", "blue"};
+
 class Brdf {
  public:
   virtual ~Brdf() = default;

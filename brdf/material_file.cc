@@ -16,10 +16,9 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kFormat = "brdfrig-material";
-constexpr int kVersion = 2;
+constexpr const char* kMaterialFormat = "brdfrig-material";
+constexpr int kMaterialVersion = 2;
 constexpr const char* kLegacyFormat = "brdfrig-slices";  // version 1: slices only
-constexpr const char* kChannelNames[3] = {"red", "green", "blue"};
 constexpr const char* kParamNames[4] = {"A1", "A2", "h", "x0"};
 
 using Reader = JsonReader;
@@ -334,10 +333,10 @@ Material ParseMaterial(const std::string& json_text, const std::string& source_n
   if (format == kLegacyFormat) {
     if (version != 1)
       r.Fail("version", "brdfrig-slices files are version 1, got " + version.dump());
-  } else if (format == kFormat) {
-    if (version != kVersion) {
-      r.Fail("version",
-             "this brdfrig reads version " + std::to_string(kVersion) + ", got " + version.dump());
+  } else if (format == kMaterialFormat) {
+    if (version != kMaterialVersion) {
+      r.Fail("version", "this brdfrig reads version " + std::to_string(kMaterialVersion) +
+                            ", got " + version.dump());
     }
     const json& kind = r.Field(doc, "", "kind");
     if (!kind.is_string()) r.Fail("kind", "expected a string, got " + kind.dump());
@@ -347,8 +346,8 @@ Material ParseMaterial(const std::string& json_text, const std::string& source_n
       r.Fail("kind", e.what());
     }
   } else {
-    r.Fail("format", std::string("expected \"") + kFormat + "\" (or the older \"" + kLegacyFormat +
-                         "\"), got " + format.dump());
+    r.Fail("format", std::string("expected \"") + kMaterialFormat + "\" (or the older \"" +
+                         kLegacyFormat + "\"), got " + format.dump());
   }
   if (doc.contains("fit")) material.fit = doc.at("fit");
   if (doc.contains("ladder")) material.ladder = doc.at("ladder");
@@ -402,7 +401,9 @@ Material ReadMaterialFile(const std::filesystem::path& path) {
 
 std::string SerializeMaterial(const Material& material) {
   (void)material.Model();  // never write a model we could not read back
-  json doc = {{"format", kFormat}, {"version", kVersion}, {"kind", ModelKindName(material.kind)}};
+  json doc = {{"format", kMaterialFormat},
+              {"version", kMaterialVersion},
+              {"kind", ModelKindName(material.kind)}};
   if (IsSliceKind(material.kind)) {
     if (!material.diagnostics.empty() && material.diagnostics.size() != material.slices.size()) {
       throw Error("material: diagnostics must be given for every slice or for none");

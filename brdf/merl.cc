@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "brdf/orthonormal_frame.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/parallel.h"
@@ -15,15 +16,6 @@ namespace {
 
 constexpr double kScale[3] = {1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0};
 constexpr std::size_t kFileBytes = 3 * sizeof(std::int32_t) + 3 * sizeof(double) * kMerlBins;
-
-// An orthonormal frame with n as its z axis (Duff et al.'s branchless construction).
-void Frame(const Vec3& n, Vec3* t, Vec3* b) {
-  const double sign = std::copysign(1.0, n.z());
-  const double a = -1.0 / (sign + n.z());
-  const double c = n.x() * n.y() * a;
-  *t = Vec3(1 + sign * n.x() * n.x() * a, sign * c, -sign * n.x());
-  *b = Vec3(c, sign + n.y() * n.y() * a, -n.y());
-}
 
 Vec3 RotateZ(const Vec3& v, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -127,7 +119,7 @@ void MerlTable::Write(const std::filesystem::path& path) const {
 Rgb MerlTable::Eval(const Vec3& l, const Vec3& v, const Vec3& n) const {
   if (n.dot(l) <= 0 || n.dot(v) <= 0) return Rgb::Zero();
   Vec3 t, b;
-  Frame(n, &t, &b);
+  OrthonormalFrame(n, &t, &b);
   const Vec3 l_local(l.dot(t), l.dot(b), l.dot(n));
   const Vec3 v_local(v.dot(t), v.dot(b), v.dot(n));
   const int index = BinIndex(l_local, v_local);

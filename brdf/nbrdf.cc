@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "brdf/json_reader.h"
+#include "brdf/orthonormal_frame.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/json_parse.h"
@@ -14,8 +15,8 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kFormat = "nbrdf-mlp";
-constexpr int kVersion = 1;
+constexpr const char* kNbrdfFormat = "nbrdf-mlp";
+constexpr int kNbrdfVersion = 1;
 
 using Reader = JsonReader;
 
@@ -57,29 +58,19 @@ void ParseLayer(const Reader& r, const json& layers, int index, const char* acti
   }
 }
 
-// An orthonormal frame with n as its z axis (Duff et al.'s branchless construction). The
-// material is isotropic, so which tangent is chosen does not matter.
-void Frame(const Vec3& n, Vec3* t, Vec3* b) {
-  const double sign = std::copysign(1.0, n.z());
-  const double a = -1.0 / (sign + n.z());
-  const double c = n.x() * n.y() * a;
-  *t = Vec3(1 + sign * n.x() * n.x() * a, sign * c, -sign * n.x());
-  *b = Vec3(c, sign + n.y() * n.y() * a, -n.y());
-}
-
 }  // namespace
 
 NeuralBrdf NeuralBrdf::Parse(const std::string& json_text, const std::string& source_name) {
   const Reader r(source_name);
   const json doc = ParseJson(json_text, source_name);
   const json& format = r.Field(doc, "", "format");
-  if (format != kFormat) {
-    r.Fail("format", std::string("expected \"") + kFormat + "\", got " + format.dump());
+  if (format != kNbrdfFormat) {
+    r.Fail("format", std::string("expected \"") + kNbrdfFormat + "\", got " + format.dump());
   }
   const json& version = r.Field(doc, "", "version");
-  if (version != kVersion) {
-    r.Fail("version",
-           "this brdfrig reads version " + std::to_string(kVersion) + ", got " + version.dump());
+  if (version != kNbrdfVersion) {
+    r.Fail("version", "this brdfrig reads version " + std::to_string(kNbrdfVersion) + ", got " +
+                          version.dump());
   }
   NeuralBrdf out;
   out.name_ = r.String(doc, "", "name");
@@ -100,7 +91,7 @@ NeuralBrdf NeuralBrdf::Read(const std::filesystem::path& path) {
 
 Rgb NeuralBrdf::Eval(const Vec3& l, const Vec3& v, const Vec3& n) const {
   Vec3 t, b;
-  Frame(n, &t, &b);
+  OrthonormalFrame(n, &t, &b);
   return EvalLocal(Vec3(l.dot(t), l.dot(b), l.dot(n)), Vec3(v.dot(t), v.dot(b), v.dot(n)));
 }
 

@@ -12,8 +12,6 @@
 namespace brdfrig::brdf {
 namespace {
 
-constexpr const char* kChannelNames[3] = {"red", "green", "blue"};
-
 // Angle between two vectors via atan2(|a×b|, a·b): accurate near 0 and pi, unlike acos.
 double AngleBetween(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "calibrate/linear_grey.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/exr_io.h"
@@ -15,19 +16,6 @@
 
 namespace brdfrig::calibrate {
 namespace {
-
-// A photo's signal as grey, full scale = 1 (the container's full scale for integer photos).
-cv::Mat LinearGrey(const cv::Mat& photo) {
-  double full_scale = 1.0;
-  if (photo.depth() == CV_8U) full_scale = 255.0;
-  if (photo.depth() == CV_16U) full_scale = 65535.0;
-  cv::Mat values;
-  photo.convertTo(values, CV_32F, 1.0 / full_scale);
-  if (values.channels() == 1) return values;
-  cv::Mat grey;
-  cv::cvtColor(values, grey, values.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
-  return grey;
-}
 
 double Median(const cv::Mat& image) {
   std::vector<float> v(image.begin<float>(), image.end<float>());

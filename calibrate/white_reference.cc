@@ -3,24 +3,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "calibrate/linear_grey.h"
 #include "common/error.h"
 #include "common/option_check.h"
 
 namespace brdfrig::calibrate {
 namespace {
-
-// A photo's signal as grey, full scale = 1 (the container's full scale for integer photos).
-cv::Mat LinearGrey(const cv::Mat& photo) {
-  double full_scale = 1.0;
-  if (photo.depth() == CV_8U) full_scale = 255.0;
-  if (photo.depth() == CV_16U) full_scale = 65535.0;
-  cv::Mat values;
-  photo.convertTo(values, CV_32F, 1.0 / full_scale);
-  if (values.channels() == 1) return values;
-  cv::Mat grey;
-  cv::transform(values, grey, cv::Matx13f(1.f / 3, 1.f / 3, 1.f / 3));
-  return grey;
-}
 
 struct Accumulator {
   double sum = 0, squares = 0;

@@ -76,4 +76,9 @@ function(brdfrig_add_library name)
                              BRDFRIG_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                              BRDFRIG_VERSION="${PROJECT_VERSION}")
   target_precompile_headers(brdfrig_${name} REUSE_FROM brdfrig_library_headers)
+  # Unity build: the library's files compiled eight to a unit, so the project's own headers and
+  # the templates they instantiate are compiled once per unit instead of once per file (the
+  # test command builds every library three times). Names in a file's anonymous namespace must
+  # therefore be unique within its library.
+  set_target_properties(brdfrig_${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
 endfunction()

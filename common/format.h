@@ -16,6 +16,15 @@ inline std::string Fixed(double value, int decimals) {
   return buffer;
 }
 
+// printf-style text, for numbers inside a sentence ("reprojection RMS %.3f px"); at most 255
+// characters.
+template <typename... Args>
+std::string Printf(const char* format, Args... args) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof(buffer), format, args...);
+  return buffer;
+}
+
 // A device code as people read it in manuals: 0x42.
 inline std::string Hex(int code) {
   char buffer[16];

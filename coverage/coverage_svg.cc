@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common/angles.h"
+#include "common/format.h"
 #include "coverage/coverage.h"
 
 namespace brdfrig::coverage {
@@ -15,12 +16,6 @@ const char* Colour(std::size_t i) {
   static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                          "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
   return kColours[i % 10];
-}
-
-std::string Num(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f", v);
-  return text;
 }
 
 }  // namespace
@@ -39,7 +34,7 @@ std::string CoverageSvg(const CoverageMap& map, const std::string& title) {
          "</pattern></defs>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << left << "\" y=\"20\" font-size=\"14\">" << title << " — covered "
-      << Num(100 * map.covered_fraction) << " %</text>\n"
+      << Fixed(100 * map.covered_fraction, 1) << " %</text>\n"
       << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << size << "\" height=\"" << size
       << "\" fill=\"#f4f4f4\" stroke=\"black\"/>\n";
   // θd grows upwards: cell row r (from the bottom) is at y = top + size - (r + 1) · ch.
@@ -50,23 +45,24 @@ std::string CoverageSvg(const CoverageMap& map, const std::string& title) {
         << "\" stroke=\"" << Colour(p) << "\" stroke-width=\"0.5\">\n";
     for (const int cell : c.cells) {
       const int h = cell / nd, d = cell % nd;
-      svg << "<rect x=\"" << Num(left + h * cw) << "\" y=\"" << Num(top + size - (d + 1) * ch)
-          << "\" width=\"" << Num(cw) << "\" height=\"" << Num(ch) << "\"/>\n";
+      svg << "<rect x=\"" << Fixed(left + h * cw, 1) << "\" y=\""
+          << Fixed(top + size - (d + 1) * ch, 1) << "\" width=\"" << Fixed(cw, 1) << "\" height=\""
+          << Fixed(ch, 1) << "\"/>\n";
     }
     svg << "</g>\n";
   }
   // θh ticks at the warped positions of round angles.
   for (const double deg : {0.0, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 45.0, 60.0, 90.0}) {
     const double x = left + std::sqrt(deg / 90) * size;
-    svg << "<line x1=\"" << Num(x) << "\" y1=\"" << top + size << "\" x2=\"" << Num(x) << "\" y2=\""
-        << top + size + 5 << "\" stroke=\"black\"/><text x=\"" << Num(x) << "\" y=\""
-        << top + size + 18 << "\" text-anchor=\"middle\">" << deg << "</text>\n";
+    svg << "<line x1=\"" << Fixed(x, 1) << "\" y1=\"" << top + size << "\" x2=\"" << Fixed(x, 1)
+        << "\" y2=\"" << top + size + 5 << "\" stroke=\"black\"/><text x=\"" << Fixed(x, 1)
+        << "\" y=\"" << top + size + 18 << "\" text-anchor=\"middle\">" << deg << "</text>\n";
   }
   for (int deg = 0; deg <= 90; deg += 15) {
     const double y = top + size - deg / 90.0 * size;
-    svg << "<line x1=\"" << left - 5 << "\" y1=\"" << Num(y) << "\" x2=\"" << left << "\" y2=\""
-        << Num(y) << "\" stroke=\"black\"/><text x=\"" << left - 8 << "\" y=\"" << Num(y + 4)
-        << "\" text-anchor=\"end\">" << deg << "</text>\n";
+    svg << "<line x1=\"" << left - 5 << "\" y1=\"" << Fixed(y, 1) << "\" x2=\"" << left
+        << "\" y2=\"" << Fixed(y, 1) << "\" stroke=\"black\"/><text x=\"" << left - 8 << "\" y=\""
+        << Fixed(y + 4, 1) << "\" text-anchor=\"end\">" << deg << "</text>\n";
   }
   svg << "<text x=\"" << left + size / 2 << "\" y=\"" << top + size + 38
       << "\" text-anchor=\"middle\">θh (degrees, sqrt axis)</text>\n"
@@ -84,7 +80,7 @@ std::string CoverageSvg(const CoverageMap& map, const std::string& title) {
         << y + 25 << "\" font-size=\"10\">";
     std::string axes;
     for (const auto& [name, angle] : c.axes) {
-      axes += (axes.empty() ? "" : " ") + name + "=" + Num(Degrees(angle));
+      axes += (axes.empty() ? "" : " ") + name + "=" + Fixed(Degrees(angle), 1);
     }
     svg << axes << "</text>\n";
   }

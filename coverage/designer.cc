@@ -1,5 +1,4 @@
 #include "coverage/designer.h"
-#include "common/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,19 +8,15 @@
 #include <optional>
 #include <sstream>
 
+#include "common/angles.h"
 #include "common/error.h"
+#include "common/format.h"
 #include "common/parallel.h"
 #include "coverage/prior_objective.h"
 #include "prior/measured_prior.h"
 
 namespace brdfrig::coverage {
 namespace {
-
-std::string Num(double v, int digits = 1) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
-}
 
 double AngleFromNormal(const geometry::Vec3& p) {
   return std::acos(std::clamp(p.normalized().z(), -1.0, 1.0));
@@ -237,16 +232,16 @@ std::vector<Candidate> ChooseForPrior(const geometry::RigGeometry& rig, const De
 std::string Describe(const PositionCoverage& c, const DesignOptions& o) {
   std::string what;
   if (c.theta_h_min < Radians(0.5)) {
-    what = "specular peak (θh from 0) at θd " + Num(Degrees(c.theta_d_min), 0) + "–" +
-           Num(Degrees(c.theta_d_max), 0) + "°";
+    what = "specular peak (θh from 0) at θd " + Fixed(Degrees(c.theta_d_min), 0) + "–" +
+           Fixed(Degrees(c.theta_d_max), 0) + "°";
   } else {
-    what = "off-specular θh " + Num(Degrees(c.theta_h_min), 0) + "–" +
-           Num(Degrees(c.theta_h_max), 0) + "° at θd " + Num(Degrees(c.theta_d_min), 0) + "–" +
-           Num(Degrees(c.theta_d_max), 0) + "°";
+    what = "off-specular θh " + Fixed(Degrees(c.theta_h_min), 0) + "–" +
+           Fixed(Degrees(c.theta_h_max), 0) + "° at θd " + Fixed(Degrees(c.theta_d_min), 0) + "–" +
+           Fixed(Degrees(c.theta_d_max), 0) + "°";
   }
   if (c.theta_d_min <= Radians(o.retro_theta_d_deg)) what += "; near retro-reflection";
   if (c.theta_in >= Radians(o.grazing_theta_in_deg)) {
-    what += "; grazing light (θi " + Num(Degrees(c.theta_in), 0) + "°)";
+    what += "; grazing light (θi " + Fixed(Degrees(c.theta_in), 0) + "°)";
   }
   return what;
 }
@@ -259,15 +254,15 @@ std::vector<WidenHint> WidenHints(const geometry::RigGeometry& rig,
   geometry::RigGeometry bigger = rig;
   bigger.target.cutout_width *= 1.5;
   bigger.target.cutout_height *= 1.5;
-  WidenHint cut{"cut-out " + Num(bigger.target.cutout_width * 1000, 0) + " × " +
-                    Num(bigger.target.cutout_height * 1000, 0) + " mm",
+  WidenHint cut{"cut-out " + Fixed(bigger.target.cutout_width * 1000, 0) + " × " +
+                    Fixed(bigger.target.cutout_height * 1000, 0) + " mm",
                 0, CheckDesignConstraints(bigger, axes, o).empty()};
   if (cut.fits)
     cut.cells = static_cast<int>(PositionCoverageAt(bigger, axes, o.report_grid).cells.size());
   hints.push_back(cut);
   geometry::RigGeometry closer = rig;
   closer.light_position *= 0.6;  // scaled towards the cut-out's centre
-  WidenHint light{"light at " + Num(closer.light_position.norm(), 2) + " m", 0, true};
+  WidenHint light{"light at " + Fixed(closer.light_position.norm(), 2) + " m", 0, true};
   light.cells = static_cast<int>(PositionCoverageAt(closer, axes, o.report_grid).cells.size());
   hints.push_back(light);
   return hints;
@@ -278,8 +273,8 @@ std::vector<WidenHint> WidenHints(const geometry::RigGeometry& rig,
 void DesignOptions::Validate() const {
   const auto range = [](const char* field, double value, double lo, double hi) {
     if (!(value >= lo && value <= hi)) {
-      throw OptionsError("plan design: " + std::string(field) + " = " + Num(value, 3) +
-                         " must be between " + Num(lo, 3) + " and " + Num(hi, 3));
+      throw OptionsError("plan design: " + std::string(field) + " = " + Fixed(value, 3) +
+                         " must be between " + Fixed(lo, 3) + " and " + Fixed(hi, 3));
     }
   };
   range("count", count, 1, 24);
@@ -324,15 +319,15 @@ std::string CheckDesignConstraints(const geometry::RigGeometry& rig,
   const geometry::Vec3 camera = pose.CenterInWorld();
   const geometry::Vec3 light = rig.LightAt(axes);
   if (camera.z() <= 0 || AngleFromNormal(camera) > Radians(o.max_view_deg)) {
-    return "camera more than " + Num(o.max_view_deg, 0) + "° from the normal";
+    return "camera more than " + Fixed(o.max_view_deg, 0) + "° from the normal";
   }
   if (light.z() <= 0 || AngleFromNormal(light) > Radians(o.max_light_deg)) {
-    return "light more than " + Num(o.max_light_deg, 0) + "° from the normal";
+    return "light more than " + Fixed(o.max_light_deg, 0) + "° from the normal";
   }
   const double separation =
       std::acos(std::clamp(camera.normalized().dot(light.normalized()), -1.0, 1.0));
   if (separation < Radians(o.min_separation_deg)) {
-    return "camera and light less than " + Num(o.min_separation_deg, 0) + "° apart";
+    return "camera and light less than " + Fixed(o.min_separation_deg, 0) + "° apart";
   }
   const geometry::Intrinsics& k = rig.intrinsics;
   for (const double sx : {-0.5, 0.5}) {
@@ -387,7 +382,7 @@ PlanDesign DesignPlan(const geometry::RigGeometry& rig, const DesignOptions& opt
   const int wanted = options.count + options.validation;
   if (static_cast<int>(candidates.size()) < wanted) {
     throw Error("plan design: the rig allows " + std::to_string(candidates.size()) +
-                " positions that keep the cut-out in view (grid step " + Num(design.step_deg) +
+                " positions that keep the cut-out in view (grid step " + Fixed(design.step_deg, 1) +
                 "°), fewer than the " + std::to_string(wanted) + " asked for");
   }
 
@@ -491,16 +486,17 @@ std::string PlanDesign::ToString() const {
   std::ostringstream out;
   out << "designed plan: " << options.count << " positions"
       << (options.validation ? " + " + std::to_string(options.validation) + " validation" : "")
-      << " chosen from " << candidates << " candidates (grid step " << Num(step_deg) << "°) by "
+      << " chosen from " << candidates << " candidates (grid step " << Fixed(step_deg, 1)
+      << "°) by "
       << (objective == "prior"
               ? "the expected reconstruction error under the prior '" + prior_name + "'"
               : std::string("weighted (theta_h, theta_d) coverage"))
-      << ": coverage score " << Num(score, 0) << " of " << Num(max_score, 0)
-      << ", covered fraction " << Num(100 * covered_fraction) << " %\n";
+      << ": coverage score " << Fixed(score, 0) << " of " << Fixed(max_score, 0)
+      << ", covered fraction " << Fixed(100 * covered_fraction, 1) << " %\n";
   if (objective == "prior") {
-    out << "  RMS error of ln(f cos cos + eps) per table node: " << Num(prior_only_rms, 3)
-        << " from the prior alone, " << Num(expected_rms, 3) << " expected with these photos, "
-        << Num(leave_one_out_rms, 3)
+    out << "  RMS error of ln(f cos cos + eps) per table node: " << Fixed(prior_only_rms, 3)
+        << " from the prior alone, " << Fixed(expected_rms, 3) << " expected with these photos, "
+        << Fixed(leave_one_out_rms, 3)
         << " measured leave-one-material-out over the prior's training materials\n";
   }
   out << "  near retro-reflection: " << (has_retro ? "yes" : "NO (the rig cannot)")
@@ -509,13 +505,13 @@ std::string PlanDesign::ToString() const {
     const DesignedPosition& d = positions[i];
     std::string axes;
     for (const auto& [name, angle] : d.coverage.axes) {
-      axes += (axes.empty() ? "" : ", ") + name + " " + Num(Degrees(angle));
+      axes += (axes.empty() ? "" : ", ") + name + " " + Fixed(Degrees(angle), 1);
     }
     out << "  " << i << (d.coverage.validation ? " (validation)" : "") << ": {" << axes
-        << "}: " << d.reason << "; coverage gain " << Num(d.gain, 0);
+        << "}: " << d.reason << "; coverage gain " << Fixed(d.gain, 0);
     if (objective == "prior" && !d.coverage.validation) {
-      out << "; expected error " << Num(d.expected_rms_after + d.prior_gain, 3) << " -> "
-          << Num(d.expected_rms_after, 3);
+      out << "; expected error " << Fixed(d.expected_rms_after + d.prior_gain, 3) << " -> "
+          << Fixed(d.expected_rms_after, 3);
     }
     out << "\n";
     std::string widen;

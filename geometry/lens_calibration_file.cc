@@ -11,7 +11,7 @@
 namespace brdfrig::geometry {
 namespace {
 
-constexpr const char* kFormat = "brdfrig-lens-calibration";
+constexpr const char* kLensCalibrationFormat = "brdfrig-lens-calibration";
 
 nlohmann::json IntrinsicsJson(const Intrinsics& k, bool with_size) {
   nlohmann::json j = {{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx},
@@ -70,7 +70,7 @@ nlohmann::json LensCalibration::ToJson() const {
                             {"rms_px", p.rms_px},
                             {"edge_width_px", p.edge_width_px}});
   }
-  return {{"format", kFormat},
+  return {{"format", kLensCalibrationFormat},
           {"version", 1},
           {"created", created},
           {"software", software},
@@ -94,8 +94,9 @@ LensCalibration ReadLensCalibration(const std::filesystem::path& path) {
   const nlohmann::json j = ParseJson(ReadFileToString(path), path.string());
   LensCalibration c;
   try {
-    if (j.at("format").get<std::string>() != kFormat) {
-      throw Error(std::string("not a lens calibration (format is not \"") + kFormat + "\")");
+    if (j.at("format").get<std::string>() != kLensCalibrationFormat) {
+      throw Error(std::string("not a lens calibration (format is not \"") + kLensCalibrationFormat +
+                  "\")");
     }
     if (Integer(j, "version", "") != 1) throw Error("version: only version 1 is known");
     c.created = j.at("created").get<std::string>();

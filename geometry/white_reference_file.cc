@@ -10,7 +10,7 @@
 namespace brdfrig::geometry {
 namespace {
 
-constexpr const char* kFormat = "brdfrig-white-reference";
+constexpr const char* kWhiteReferenceFormat = "brdfrig-white-reference";
 
 double Albedo(const nlohmann::json& j, const char* key) {
   const double v = j.at(key).get<double>();
@@ -21,7 +21,7 @@ double Albedo(const nlohmann::json& j, const char* key) {
 }  // namespace
 
 void WriteWhiteReference(const std::filesystem::path& path, const WhiteReference& r) {
-  const nlohmann::json j = {{"format", kFormat},
+  const nlohmann::json j = {{"format", kWhiteReferenceFormat},
                             {"version", 1},
                             {"created", r.created},
                             {"software", r.software},
@@ -38,8 +38,9 @@ WhiteReference ReadWhiteReference(const std::filesystem::path& path) {
   const nlohmann::json j = ParseJson(ReadFileToString(path), path.string());
   WhiteReference r;
   try {
-    if (j.at("format").get<std::string>() != kFormat) {
-      throw Error(std::string("not a white reference (format is not \"") + kFormat + "\")");
+    if (j.at("format").get<std::string>() != kWhiteReferenceFormat) {
+      throw Error(std::string("not a white reference (format is not \"") + kWhiteReferenceFormat +
+                  "\")");
     }
     if (j.at("version").get<double>() != 1) throw Error("version: only version 1 is known");
     r.created = j.at("created").get<std::string>();

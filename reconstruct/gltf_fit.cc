@@ -9,6 +9,7 @@
 
 #include "brdf/gltf_terms.h"
 #include "common/error.h"
+#include "common/median.h"
 #include "common/option_check.h"
 #include "reconstruct/log_loss.h"
 
@@ -79,13 +80,6 @@ double Cost(const std::vector<Prepared>& samples, const Epsilon& eps, const Star
     }
   }
   return sum;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto mid = v.begin() + static_cast<long>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 // The best start on a roughness grid for a dielectric (metallic 0) or a metal (metallic 1):

@@ -1,5 +1,4 @@
 #include "reconstruct/microfacet_fit.h"
-#include "common/angles.h"
 
 #include <ceres/ceres.h>
 
@@ -9,8 +8,10 @@
 #include <limits>
 
 #include "brdf/microfacet_terms.h"
+#include "common/angles.h"
 #include "common/error.h"
 #include "common/format.h"
+#include "common/median.h"
 #include "reconstruct/energy.h"
 #include "reconstruct/log_loss.h"
 
@@ -109,13 +110,6 @@ double SpecularUnit(brdf::Distribution d, const Prepared& s, double alpha) {
           : mf::BeckmannD(s.cos_h, alpha) * mf::BeckmannG1(s.cos_i, alpha) *
                 mf::BeckmannG1(s.cos_o, alpha);
   return g / (4 * s.cos_i * s.cos_o);
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto mid = v.begin() + static_cast<long>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 // rho_d from the darkest tenth of the data (by measure: see WeightedQuantile), times

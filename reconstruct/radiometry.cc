@@ -5,18 +5,10 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/median.h"
 #include "common/option_check.h"
 
 namespace brdfrig::reconstruct {
-namespace {
-
-double Median(std::vector<double> values) {
-  const auto middle = values.begin() + static_cast<long>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
-}  // namespace
 
 cv::Vec3d Radiometry::ScaleAt(double x, double y) const {
   if (width == 0) return scale;

@@ -5,6 +5,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/format.h"
 #include "common/json_parse.h"
 #include "common/utc_time.h"
 #include "geometry/lens_calibration_file.h"
@@ -14,23 +15,17 @@
 namespace brdfrig::rig {
 namespace {
 
-std::string Format(const char* format, double a, double b = 0) {
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, format, a, b);
-  return buffer;
-}
-
 CalibrationState Lens(const std::filesystem::path& file) {
   const geometry::LensCalibration c = geometry::ReadLensCalibration(file);
   return {"lens", file, c.created,
-          Format("reprojection RMS %.3f px, %.0f corners", c.rms_px, c.corners) +
-              Format(", frame coverage %.0f %%", 100 * c.coverage)};
+          Printf("reprojection RMS %.3f px, %.0f corners", c.rms_px, c.corners) +
+              Printf(", frame coverage %.0f %%", 100 * c.coverage)};
 }
 
 CalibrationState White(const std::filesystem::path& file) {
   const geometry::WhiteReference r = geometry::ReadWhiteReference(file);
   return {"white reference", file, r.created,
-          Format("paper albedo %.4f, tile spread %.2f %%", r.paper_albedo, 100 * r.tile_spread)};
+          Printf("paper albedo %.4f, tile spread %.2f %%", r.paper_albedo, 100 * r.tile_spread)};
 }
 
 // The gain map's record is the JSON `rig calibrate flat` writes beside it (FILE.json).
@@ -45,13 +40,13 @@ CalibrationState Flat(const std::filesystem::path& file) {
   const nlohmann::json j = ParseJson(ReadFileToString(record), record.string());
   state.created = j.value("created", "");
   if (j.contains("fit_rms") && j["fit_rms"].is_number()) {
-    state.figure = Format("fit RMS %.2f %%", 100 * j["fit_rms"].get<double>());
+    state.figure = Printf("fit RMS %.2f %%", 100 * j["fit_rms"].get<double>());
   }
   if (j.contains("min_gain") && j["min_gain"].is_number() && j.contains("max_gain") &&
       j["max_gain"].is_number()) {
     state.figure +=
         (state.figure.empty() ? "" : ", ") +
-        Format("gain %.3f to %.3f", j["min_gain"].get<double>(), j["max_gain"].get<double>());
+        Printf("gain %.3f to %.3f", j["min_gain"].get<double>(), j["max_gain"].get<double>());
   }
   return state;
 }

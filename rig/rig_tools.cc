@@ -18,15 +18,9 @@
 namespace brdfrig::rig {
 namespace {
 
-std::string Format(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
 std::string ExposureLabel(double seconds) {
-  if (seconds < 0.5) return "1/" + Format("%.0f", 1 / seconds) + " s";
-  return Format("%g", seconds) + " s";
+  if (seconds < 0.5) return "1/" + Printf("%.0f", 1 / seconds) + " s";
+  return Printf("%g", seconds) + " s";
 }
 
 DeviceContext Context(const std::filesystem::path& rig_file, const std::string& name) {
@@ -59,7 +53,7 @@ void CheckAxis(Axis& axis, const std::string& backend, DeviceCheck& check) {
   const auto* modbus = dynamic_cast<const ModbusAxis*>(&axis);
   std::string where = modbus ? modbus->Describe() : backend;
   const AxisStatus status = axis.Status();
-  const std::string position = Format("%.3f deg", Degrees(status.position));
+  const std::string position = Printf("%.3f deg", Degrees(status.position));
   switch (status.state) {
     case AxisState::kReady:
       check.ok = true;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
+#include "common/format.h"
 #include "sim/devices.h"
 #include "sim/image_io.h"
 #include "sim/scene.h"
@@ -14,12 +15,6 @@ namespace brdfrig::sim {
 namespace {
 
 constexpr int kMaxAttempts = 8;
-
-std::string Name(const char* format, int a, int b = 0) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, a, b);
-  return buffer;
-}
 
 // Runs `action`, recovering from the transient faults a scene can schedule, as the acquisition
 // engine would (a smaller version of it: bounded retries, no back-off).
@@ -81,7 +76,7 @@ SimulateSummary SimulateBoard(const SimulateOptions& options, std::shared_ptr<Si
         },
         camera, axes, &summary.recovered_faults);
     const rig::Frame& frame = frames.front();
-    const std::string stem = Name("board_%02d", p);
+    const std::string stem = Printf("board_%02d", p);
     WriteFileAtomically(summary.photos_dir / (stem + scene.sensor.Extension()), frame.bytes);
     log["frames"].push_back({{"file", stem + scene.sensor.Extension()},
                              {"board_pose", p},
@@ -188,7 +183,7 @@ SimulateSummary Simulate(const SimulateOptions& options) {
           camera, axes, &summary.recovered_faults);
       const rig::Frame& frame = frames.front();
       const std::string file =
-          Name("p%02d_e%d", static_cast<int>(p), static_cast<int>(e)) + scene.sensor.Extension();
+          Printf("p%02d_e%d", static_cast<int>(p), static_cast<int>(e)) + scene.sensor.Extension();
       WriteFileAtomically(summary.photos_dir / file, frame.bytes);
       log["frames"].push_back({{"file", file},
                                {"position_index", p},
@@ -202,7 +197,7 @@ SimulateSummary Simulate(const SimulateOptions& options) {
     if (options.write_truth) {
       // The truth of what was photographed: where the arms really were.
       const geometry::AxisPositions truth = world->TruePositions();
-      const std::string stem = Name("p%02d", static_cast<int>(p));
+      const std::string stem = Printf("p%02d", static_cast<int>(p));
       RenderOptions render;
       render.threads = options.threads;
       WriteRadianceExr(summary.truth_dir / (stem + ".exr"),

@@ -6,11 +6,6 @@
 #include "simcamera/ptp_data.h"
 
 namespace brdfrig::simcamera {
-namespace {
-
-std::string TypeName(PacketType type) { return std::to_string(static_cast<std::uint32_t>(type)); }
-
-}  // namespace
 
 std::uint32_t PacketAssembler::length() const {
   return static_cast<std::uint32_t>(buffer_[0]) | static_cast<std::uint32_t>(buffer_[1]) << 8 |
@@ -52,7 +47,7 @@ std::optional<Packet> PacketAssembler::Take() {
 bool IncomingDataPhase::Add(const Packet& packet) {
   if (!total_) {
     if (packet.type != PacketType::kStartData) {
-      throw Error("PTP/IP: expected start data, got packet type " + TypeName(packet.type));
+      throw Error("PTP/IP: expected start data, got packet type " + PacketTypeName(packet.type));
     }
     PtpReader r(packet.payload);
     if (r.U32() != transaction_) throw Error("PTP/IP: start data for another transaction");
@@ -62,7 +57,7 @@ bool IncomingDataPhase::Add(const Packet& packet) {
     return false;
   }
   if (packet.type != PacketType::kData && packet.type != PacketType::kEndData) {
-    throw Error("PTP/IP: expected data, got packet type " + TypeName(packet.type));
+    throw Error("PTP/IP: expected data, got packet type " + PacketTypeName(packet.type));
   }
   if (packet.payload.size() < 4) throw Error("PTP/IP: data packet without a transaction id");
   PtpReader r(packet.payload);

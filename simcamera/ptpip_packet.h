@@ -26,6 +26,11 @@ struct Packet {
 // malformed header or a connection that breaks inside a packet.
 std::optional<Packet> ReadPacket(int fd, std::chrono::milliseconds timeout);
 
+// A packet type as messages show it: its number, which the PTP/IP specification tables by.
+inline std::string PacketTypeName(PacketType type) {
+  return std::to_string(static_cast<std::uint32_t>(type));
+}
+
 // One packet's bytes: header and payload.
 std::vector<std::uint8_t> EncodePacket(PacketType type, const std::vector<std::uint8_t>& payload);
 // Writes one packet; false when the peer is gone (never raises SIGPIPE).

@@ -33,8 +33,6 @@ bool RefusedWhenBusy(std::uint16_t code) {
   return code == op::kGetObject || code == op::kDeleteObject;
 }
 
-std::string TypeName(PacketType type) { return std::to_string(static_cast<std::uint32_t>(type)); }
-
 }  // namespace
 
 PtpIpCameraServer::PtpIpCameraServer(CameraServerOptions options, ShotFunction shoot)
@@ -307,7 +305,7 @@ void PtpIpCameraServer::OnNewcomer(PtpIpConnection& c, const Packet& packet,
     }
   }
   std::fprintf(stderr, "simulated camera: unexpected first packet (type %s); refusing it\n",
-               TypeName(packet.type).c_str());
+               PacketTypeName(packet.type).c_str());
   c.Queue(EncodePacket(PacketType::kInitFail, {1, 0, 0, 0}), now);
   c.close_when_sent = true;
 }
@@ -327,7 +325,8 @@ void PtpIpCameraServer::OnCommand(PtpIpConnection& c, const Packet& packet, Cloc
     return;
   }
   if (packet.type != PacketType::kOperationRequest) {
-    throw Error("unexpected packet type " + TypeName(packet.type) + " on the command connection");
+    throw Error("unexpected packet type " + PacketTypeName(packet.type) +
+                " on the command connection");
   }
   const OperationRequest request = ParseOperationRequest(packet);
   if (request.data_phase == kDataPhaseToCamera) {
