@@ -41,6 +41,13 @@ MarkerMaskSpec MarkerMaskSpec::ForTarget(const geometry::TargetGeometry& target)
   spec.cutout_height_m = target.cutout_height;
   spec.paper_width_m = target.paper_width;
   spec.paper_height_m = target.paper_height;
+  if (target.markers) {
+    spec.marker_m = target.markers->marker;
+    spec.gap_m = target.markers->gap;
+    spec.spacing_m = target.markers->spacing;
+    spec.dictionary = target.markers->dictionary;
+    spec.first_id = target.markers->first_id;
+  }
   return spec;
 }
 

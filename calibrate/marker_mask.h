@@ -28,7 +28,8 @@ struct MarkerMaskSpec {
   std::string dictionary = "DICT_4X4_100";
   int first_id = 0;  // markers take ids first_id, first_id + 1, ... around the ring
 
-  // The cut-out and paper of a rig's target, with the default markers.
+  // The cut-out and paper of a rig's target, with its ring of markers (the defaults when the
+  // target describes none).
   static MarkerMaskSpec ForTarget(const geometry::TargetGeometry& target);
 
   // Throws OptionsError naming the field: the ring must fit inside the paper with room for the

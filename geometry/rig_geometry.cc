@@ -97,6 +97,18 @@ TargetGeometry ParseTarget(const YamlNode& node) {
   if (auto albedo = node.Optional("paper_albedo")) {
     t.paper_albedo = albedo->InRange(albedo->AsDouble(), 0.01, 1.0);
   }
+  if (auto markers = node.Optional("markers")) {
+    MaskMarkerRing ring;
+    if (auto size = markers->Optional("size")) ring.marker = size->Positive(size->AsDouble());
+    if (auto gap = markers->Optional("gap")) ring.gap = gap->Positive(gap->AsDouble());
+    if (auto spacing = markers->Optional("spacing")) {
+      ring.spacing = spacing->Positive(spacing->AsDouble());
+    }
+    if (auto dictionary = markers->Optional("dictionary")) ring.dictionary = dictionary->AsString();
+    if (auto first = markers->Optional("first_id")) ring.first_id = first->AsInt();
+    markers->Finish();
+    t.markers = ring;
+  }
   node.Finish();
   return t;
 }

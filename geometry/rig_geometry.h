@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,16 @@ struct RotationAxis {
   enum class Moves { kCamera, kLight, kSample } moves = Moves::kLight;
 };
 
+// A marker mask's ring of ArUco markers printed around the cut-out (calibrate/marker_mask.h lays
+// them out; `brdfrig target print` prints them). Metres.
+struct MaskMarkerRing {
+  double marker = 0.02;   // side of a marker, black border included
+  double gap = 0.01;      // from the cut-out's edge to the ring
+  double spacing = 0.01;  // least white between neighbouring markers
+  std::string dictionary = "DICT_4X4_100";
+  int first_id = 0;
+};
+
 // The paper mask: a near-Lambertian reference of known albedo with a rectangular cut-out.
 struct TargetGeometry {
   double cutout_width = 0.1;   // metres, along world x
@@ -36,6 +47,9 @@ struct TargetGeometry {
   double paper_width = 0.3;    // metres (outer size of the paper)
   double paper_height = 0.3;
   double paper_albedo = 0.8;  // diffuse reflectance of the paper (grey)
+  // A marker mask: the pose comes from its markers (reconstruct/marker_pose.h) and the paper's
+  // radiometry from the bare paper between the cut-out and the ring. None: a plain mask.
+  std::optional<MaskMarkerRing> markers;
 };
 
 struct RigGeometry {

@@ -57,6 +57,42 @@ LoadedBracket LoadBracket(const CapturePosition& position, const geometry::Intri
   return bracket;
 }
 
+// The pose from the marker mask's corners when the rig has one and enough markers are found,
+// else from the cut-out's corners (a marker pose that fails its checks falls back too, saying
+// why).
+PoseEstimate MeasurePose(const HdrImage& hdr, const geometry::RigGeometry& nominal,
+                         const geometry::CameraPose& nominal_pose, const MeasureOptions& options,
+                         PositionReport* report) {
+  if (nominal.target.markers) {
+    const MarkerCorners markers =
+        FindMaskMarkers(hdr.radiance, hdr.valid, nominal.intrinsics, nominal.target);
+    if (markers.markers >= options.target.min_markers) {
+      try {
+        const PoseEstimate pose =
+            PoseFromPlanePoints(markers.world, markers.image, nominal.intrinsics, nominal_pose,
+                                options.target, "the mask's marker corners");
+        report->pose_from = "markers";
+        report->pose_points = static_cast<int>(markers.image.size());
+        return pose;
+      } catch (const Error& e) {
+        report->warnings.push_back(std::string("pose from the cut-out: ") + e.what());
+      }
+    } else {
+      report->warnings.push_back(
+          "pose from the cut-out: " + std::to_string(markers.markers) +
+          " of the marker mask's markers found (at least " +
+          std::to_string(options.target.min_markers) +
+          " wanted; are they in view, sharp, and is the rig's target.markers the printed mask?)");
+    }
+  }
+  const TargetCorners corners = FindCutoutCorners(hdr.radiance, hdr.valid, nominal.intrinsics,
+                                                  nominal_pose, nominal.target, options.target);
+  report->pose_from = "cut-out";
+  report->pose_points = 4;
+  report->edge_line_rms_px = corners.line_rms_px;
+  return EstimatePose(corners, nominal.intrinsics, nominal.target, nominal_pose, options.target);
+}
+
 }  // namespace
 
 std::string PositionName(int index) {
@@ -112,9 +148,7 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   PoseEstimate pose;
   {
     StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "target", CpuClock::kThread);
-    const TargetCorners corners = FindCutoutCorners(hdr.radiance, hdr.valid, nominal.intrinsics,
-                                                    nominal_pose, nominal.target, options.target);
-    pose = EstimatePose(corners, nominal.intrinsics, nominal.target, nominal_pose, options.target);
+    pose = MeasurePose(hdr, nominal, nominal_pose, options, &report);
   }
   report.reprojection_rms_px = pose.reprojection_rms_px;
   report.camera_disagreement_m = pose.nominal_disagreement_m;

@@ -15,6 +15,7 @@
 #include "reconstruct/hdr_merge.h"
 #include "reconstruct/light_estimate.h"
 #include "reconstruct/light_refine.h"
+#include "reconstruct/marker_pose.h"
 #include "reconstruct/radiometry.h"
 #include "reconstruct/samples.h"
 #include "reconstruct/slice_fit.h"
@@ -30,6 +31,9 @@ struct PositionReport {
   double invalid_fraction = 0;  // pixels clipped in every exposure
   long non_finite_pixels = 0;   // NaN/Inf in any exposure (float photos): marked invalid
   double reprojection_rms_px = 0;
+  // What the pose came from: "markers" (the marker mask's corners) or "cut-out" (its four).
+  std::string pose_from = "cut-out";
+  int pose_points = 0;               // corners the pose was fitted to
   double camera_disagreement_m = 0;  // measured vs nominal camera centre
   double edge_line_rms_px = 0;       // scatter of the cut-out edge points about their lines
   LightEstimate light;               // position: after refinement
@@ -57,7 +61,7 @@ struct MeasuredPosition {
   PositionReport report;
   BrdfSamples samples;          // binned by theta (the seed's slices)
   DirectionSamples directions;  // with directions (the microfacet rungs)
-  geometry::CameraPose pose;    // measured from the cut-out (camera_from_world)
+  geometry::CameraPose pose;    // measured from the markers or the cut-out (camera_from_world)
 };
 
 // State shared by the positions of one capture.

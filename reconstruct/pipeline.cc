@@ -303,6 +303,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
       if (!r.warnings.empty()) p["warnings"] = r.warnings;
       p["non_finite_pixels"] = r.non_finite_pixels;
       if (r.non_finite_pixels > 0) p["degraded"] = DegradedReason(r);
+      p["pose_from"] = r.pose_from;
+      p["pose_points"] = r.pose_points;
       p["reprojection_rms_px"] = r.reprojection_rms_px;
       p["light_from_highlight"] = r.light.from_highlight;
       p["light_vs_nominal_deg"] = Degrees(r.light.nominal_disagreement_rad);
@@ -380,10 +382,12 @@ std::string ReconstructionResult::Summary() const {
       out << "skipped (" << p.skipped_reason << ")\n";
       continue;
     }
-    out << "theta_in " << Degrees(p.theta_in) << "°, pose reprojection " << p.reprojection_rms_px
-        << " px (edges " << p.edge_line_rms_px << " px), camera " << p.camera_disagreement_m * 1000
-        << " mm from nominal, light " << (p.light.from_highlight ? "from highlight" : "nominal")
-        << " (" << Degrees(p.light.nominal_disagreement_rad) << "° from nominal, refined by "
+    out << "theta_in " << Degrees(p.theta_in) << "°, pose from the " << p.pose_from << " ("
+        << p.pose_points << " points), reprojection " << p.reprojection_rms_px << " px";
+    if (p.pose_from == "cut-out") out << " (edges " << p.edge_line_rms_px << " px)";
+    out << ", camera " << p.camera_disagreement_m * 1000 << " mm from nominal, light "
+        << (p.light.from_highlight ? "from highlight" : "nominal") << " ("
+        << Degrees(p.light.nominal_disagreement_rad) << "° from nominal, refined by "
         << Degrees(p.light_refinement_rad) << "°), paper spread " << p.radiometry.relative_spread
         << ", " << p.samples << " samples (" << p.direction_samples << " with directions)\n";
   }

@@ -34,12 +34,18 @@ Radiometry CalibrateFromPaper(const cv::Mat& radiance, const cv::Mat& valid, con
                               const geometry::Vec3& light, const geometry::TargetGeometry& target,
                               const RadiometryOptions& options) {
   options.Validate();
-  const double band_x = (target.paper_width - target.cutout_width) / 2;
-  const double band_y = (target.paper_height - target.cutout_height) / 2;
+  // The bare paper: from the cut-out's edge to the paper's, or on a marker mask to the ring of
+  // markers (beyond it the print — markers, scale bar, title — is not the paper's albedo).
+  const double outer_x =
+      target.markers ? target.cutout_width / 2 + target.markers->gap : target.paper_width / 2;
+  const double outer_y =
+      target.markers ? target.cutout_height / 2 + target.markers->gap : target.paper_height / 2;
+  const double band_x = outer_x - target.cutout_width / 2;
+  const double band_y = outer_y - target.cutout_height / 2;
   const double in_x = target.cutout_width / 2 + options.margin * band_x;
   const double in_y = target.cutout_height / 2 + options.margin * band_y;
-  const double out_x = target.paper_width / 2 - options.margin * band_x;
-  const double out_y = target.paper_height / 2 - options.margin * band_y;
+  const double out_x = outer_x - options.margin * band_x;
+  const double out_y = outer_y - options.margin * band_y;
   const PlaneView::Box box = view.PixelBox(out_x, out_y);
   std::array<std::vector<double>, 3> k;
   std::vector<cv::Point> at;

@@ -131,6 +131,8 @@ void TargetOptions::Validate() const {
   CheckOption(min_edge_fraction > 0 && min_edge_fraction <= 1, "TargetOptions.min_edge_fraction",
               min_edge_fraction, "in (0, 1]");
   CheckOption(lines_per_edge >= 1, "TargetOptions.lines_per_edge", lines_per_edge, ">= 1");
+  CheckOption(min_markers >= 2, "TargetOptions.min_markers", min_markers,
+              ">= 2 (eight corners; fewer would not beat the cut-out's four)");
   CheckOption(max_reprojection_px > 0, "TargetOptions.max_reprojection_px", max_reprojection_px,
               "> 0");
 }
@@ -267,11 +269,19 @@ PoseEstimate EstimatePose(const TargetCorners& corners, const geometry::Intrinsi
                           const geometry::CameraPose& nominal, const TargetOptions& options) {
   std::vector<cv::Point3d> object;
   for (const geometry::Vec3& w : WorldCorners(target)) object.emplace_back(w.x(), w.y(), w.z());
-  std::vector<cv::Point2d> image(corners.corners.begin(), corners.corners.end());
+  const std::vector<cv::Point2d> image(corners.corners.begin(), corners.corners.end());
+  return PoseFromPlanePoints(object, image, intrinsics, nominal, options, "the cut-out's corners");
+}
+
+PoseEstimate PoseFromPlanePoints(const std::vector<cv::Point3d>& object,
+                                 const std::vector<cv::Point2d>& image,
+                                 const geometry::Intrinsics& intrinsics,
+                                 const geometry::CameraPose& nominal, const TargetOptions& options,
+                                 const std::string& what) {
   const cv::Mat k(CameraMatrix(intrinsics));
   cv::Mat rvec, tvec;
   if (!cv::solvePnP(object, image, k, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_IPPE)) {
-    throw Error("pose not found: the cut-out's corners admit no planar pose");
+    throw Error("pose not found: " + what + " admit no planar pose");
   }
   cv::solvePnPRefineLM(object, image, k, cv::noArray(), rvec, tvec);
   std::vector<cv::Point2d> reprojected;
@@ -282,7 +292,7 @@ PoseEstimate EstimatePose(const TargetCorners& corners, const geometry::Intrinsi
     sum_sq += d.dot(d);
   }
   PoseEstimate estimate;
-  estimate.reprojection_rms_px = std::sqrt(sum_sq / 4);
+  estimate.reprojection_rms_px = std::sqrt(sum_sq / static_cast<double>(image.size()));
   cv::Matx33d r;
   cv::Rodrigues(rvec, r);
   Eigen::Matrix3d rotation;
@@ -297,7 +307,7 @@ PoseEstimate EstimatePose(const TargetCorners& corners, const geometry::Intrinsi
   estimate.distance_m = centre.norm();
   estimate.nominal_disagreement_m = (centre - nominal_centre).norm();
   if (estimate.reprojection_rms_px > options.max_reprojection_px) {
-    throw Error("implausible pose: the cut-out's corners reproject with " +
+    throw Error("implausible pose: " + what + " reproject with " +
                 std::to_string(estimate.reprojection_rms_px) + " px RMS error (limit " +
                 std::to_string(options.max_reprojection_px) + " px)");
   }

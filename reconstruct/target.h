@@ -17,6 +17,7 @@
 #include <array>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "geometry/rig_geometry.h"
 
@@ -31,6 +32,9 @@ struct TargetOptions {
   bool use_paper_outline = true;   // the paper's outer edges help when a cut-out edge is weak
   int lines_per_edge = 3;          // candidate lines kept per edge for the joint choice
   double max_reprojection_px = 2.0;  // a pose worse than this is refused
+  // On a marker mask: fewer markers found than this and the pose comes from the cut-out's
+  // corners instead (four markers are sixteen corners around the cut-out).
+  int min_markers = 4;
   // A measured camera this far from the rig's nominal one is used, with a warning: either the
   // rig file is off or the edges were found on badly exposed photos.
   double warn_camera_offset_m = 0.02;
@@ -66,6 +70,14 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
 PoseEstimate EstimatePose(const TargetCorners& corners, const geometry::Intrinsics& intrinsics,
                           const geometry::TargetGeometry& target,
                           const geometry::CameraPose& nominal, const TargetOptions& options);
+
+// The same for any points of the sample plane (z = 0) and their undistorted pixels, at least
+// four; `what` names them in errors ("the mask's marker corners").
+PoseEstimate PoseFromPlanePoints(const std::vector<cv::Point3d>& object,
+                                 const std::vector<cv::Point2d>& image,
+                                 const geometry::Intrinsics& intrinsics,
+                                 const geometry::CameraPose& nominal, const TargetOptions& options,
+                                 const std::string& what);
 
 // Intrinsics with the distortion removed (what undistorted pixel coordinates refer to).
 cv::Matx33d CameraMatrix(const geometry::Intrinsics& intrinsics);

@@ -23,7 +23,8 @@ enum Surface : std::uint8_t {
   kPaper = 2,
   kSample = 3,
   kBoardPaper = 4,
-  kBoardInk = 5
+  kBoardInk = 5,
+  kMaskInk = 6  // a marker mask's print (markers, cut line, scale bar)
 };
 
 // Where a ray meets the scene board's page.
@@ -62,7 +63,7 @@ std::vector<Emitter> Emitters(const Scene& scene, const TrueGeometry& g) {
 class Shader {
  public:
   Shader(const Scene& scene, const TrueGeometry& g, const std::vector<Rgb>& sample_albedo,
-         const BoardPrint* board)
+         const SheetPrint* board, const SheetPrint* mask)
       : scene_(scene),
         g_(g),
         center_(g.camera.CenterInWorld()),
@@ -71,6 +72,7 @@ class Shader {
         table_(scene.background_albedo),
         sample_albedo_(sample_albedo),
         board_(g.board_pose >= 0 ? board : nullptr),
+        mask_(mask),
         page_from_world_(g.world_from_page.inverse()) {}
 
   Vec3 Ray(double u, double v) const {
@@ -104,7 +106,8 @@ class Shader {
     if (ax <= 0.5 * t.cutout_width && ay <= 0.5 * t.cutout_height) {
       return ax <= 0.5 * scene_.sample.width && ay <= 0.5 * scene_.sample.height ? kSample : kTable;
     }
-    return ax <= 0.5 * t.paper_width && ay <= 0.5 * t.paper_height ? kPaper : kTable;
+    if (ax > 0.5 * t.paper_width || ay > 0.5 * t.paper_height) return kTable;
+    return mask_ != nullptr && mask_->Ink(MaskPageX(*point), MaskPageY(*point)) ? kMaskInk : kPaper;
   }
 
   Surface SurfaceAtPixel(double u, double v) const {
@@ -118,9 +121,11 @@ class Shader {
     Vec3 point;
     const Surface surface = SurfaceAt(ray, &point);
     if (surface == kSky) return Rgb::Zero();
-    const brdf::Brdf& material = surface == kSample  ? *scene_.sample.brdf
-                                 : surface == kPaper ? static_cast<const brdf::Brdf&>(paper_)
-                                                     : static_cast<const brdf::Brdf&>(table_);
+    const brdf::Lambert paper = PaperAt(point);
+    const brdf::Brdf& material = surface == kSample ? *scene_.sample.brdf
+                                 : surface == kPaper || surface == kMaskInk
+                                     ? static_cast<const brdf::Brdf&>(paper)
+                                     : static_cast<const brdf::Brdf&>(table_);
     const Vec3 n = Vec3::UnitZ();
     const Vec3 view = (center_ - point).normalized();
     Rgb sum = Rgb::Zero();
@@ -132,11 +137,24 @@ class Shader {
       if (cos_in <= 0) continue;
       sum += material.Eval(l, view, n) * (e.intensity * cos_in / d2);
     }
-    if (scene_.effects.ambient) sum += scene_.effects.ambient->radiance * Albedo(surface, view);
+    if (scene_.effects.ambient) {
+      sum += scene_.effects.ambient->radiance *
+             (surface == kPaper || surface == kMaskInk ? paper.albedo() : Albedo(surface, view));
+    }
     return sum;
   }
 
  private:
+  // The marker mask's page coordinates of a point of the sample plane (sim/sheet_print.h).
+  double MaskPageX(const Vec3& p) const { return p.x() + 0.5 * scene_.rig.target.paper_width; }
+  double MaskPageY(const Vec3& p) const { return 0.5 * scene_.rig.target.paper_height - p.y(); }
+
+  // The paper at a point: bare, or printed on a marker mask.
+  brdf::Lambert PaperAt(const Vec3& p) const {
+    if (mask_ == nullptr) return paper_;
+    return brdf::Lambert(Rgb::Constant(mask_->Albedo(MaskPageX(p), MaskPageY(p))));
+  }
+
   // The print is Lambertian: albedo / pi times the irradiance of each emitter on the side
   // the camera sees (the back of the sheet is bare paper).
   Rgb BoardRadiance(const Vec3& ray, const BoardHit& hit) const {
@@ -160,7 +178,6 @@ class Shader {
   // Directional albedo towards the viewer: by reciprocity the fraction of a uniform sky's
   // radiance that leaves towards it.
   Rgb Albedo(Surface surface, const Vec3& view) const {
-    if (surface == kPaper) return paper_.albedo();
     if (surface == kTable) return table_.albedo();
     const double t = std::clamp(view.z(), 0.0, 1.0) * (sample_albedo_.size() - 1);
     const std::size_t i = std::min(static_cast<std::size_t>(t), sample_albedo_.size() - 2);
@@ -174,17 +191,18 @@ class Shader {
   std::vector<Emitter> emitters_;
   brdf::Lambert paper_, table_;
   const std::vector<Rgb>& sample_albedo_;
-  const BoardPrint* board_;  // null without a board
+  const SheetPrint* board_;  // null without a board
+  const SheetPrint* mask_;   // null on a plain mask
   Eigen::Isometry3d page_from_world_;
 };
 
 }  // namespace
 
 cv::Mat SynthesizeRadiance(const Scene& scene, const TrueGeometry& g,
-                           const std::vector<Rgb>& sample_albedo, const BoardPrint* board,
-                           int threads) {
+                           const std::vector<Rgb>& sample_albedo, const SheetPrint* board,
+                           const SheetPrint* mask, int threads) {
   const int width = g.intrinsics.width, height = g.intrinsics.height;
-  const Shader shader(scene, g, sample_albedo, board);
+  const Shader shader(scene, g, sample_albedo, board, mask);
   const int n = scene.render.supersampling;
 
   // Surface seen at every pixel corner: a pixel whose four corners disagree straddles an edge.

@@ -9,10 +9,6 @@
 namespace brdfrig::sim {
 namespace {
 
-// 20 samples per millimetre: a tenth of a pixel of the default camera at 0.4 m, so the print
-// is as sharp as a laser print is to the camera, and edges land at their exact positions.
-constexpr double kPrintPxPerM = 20000;
-
 Eigen::Vector3d ReadVector(const YamlNode& node) {
   const std::vector<double> v = node.AsDoubles();
   if (v.size() != 3) node.Fail("expected [x, y, z]");
@@ -60,31 +56,10 @@ SceneBoard ParseSceneBoard(const YamlNode& node) {
   return board;
 }
 
-BoardPrint::BoardPrint(const SceneBoard& board)
-    : ink_(calibrate::RasterizeCharucoSheet(board.spec, kPrintPxPerM)),
-      px_per_m_(kPrintPxPerM),
-      width_m_(board.spec.page_width_m),
-      height_m_(board.spec.page_height_m),
-      paper_(board.paper_albedo),
-      ink_albedo_(board.ink_albedo) {}
-
-double BoardPrint::Coverage(double x, double y) const {
-  // Bilinear between sample centres (sample (i, j) covers [i, i + 1) / px_per_m).
-  const double u = x * px_per_m_ - 0.5, v = y * px_per_m_ - 0.5;
-  const int i = std::clamp(static_cast<int>(std::floor(u)), 0, ink_.cols - 2);
-  const int j = std::clamp(static_cast<int>(std::floor(v)), 0, ink_.rows - 2);
-  const double fu = std::clamp(u - i, 0.0, 1.0), fv = std::clamp(v - j, 0.0, 1.0);
-  const std::uint8_t* row0 = ink_.ptr<std::uint8_t>(j);
-  const std::uint8_t* row1 = ink_.ptr<std::uint8_t>(j + 1);
-  const double top = row0[i] * (1 - fu) + row0[i + 1] * fu;
-  const double bottom = row1[i] * (1 - fu) + row1[i + 1] * fu;
-  return (top * (1 - fv) + bottom * fv) / 255.0;
+SheetPrint PrintOfBoard(const SceneBoard& board) {
+  return SheetPrint(calibrate::RasterizeCharucoSheet(board.spec, kPrintPxPerM), kPrintPxPerM,
+                    board.spec.page_width_m, board.spec.page_height_m, board.paper_albedo,
+                    board.ink_albedo);
 }
-
-double BoardPrint::Albedo(double x, double y) const {
-  return paper_ + (ink_albedo_ - paper_) * Coverage(x, y);
-}
-
-bool BoardPrint::Ink(double x, double y) const { return Coverage(x, y) >= 0.5; }
 
 }  // namespace brdfrig::sim

@@ -24,6 +24,7 @@
 
 #include "calibrate/charuco_spec.h"
 #include "common/yaml_reader.h"
+#include "sim/sheet_print.h"
 
 namespace brdfrig::sim {
 
@@ -39,24 +40,7 @@ struct SceneBoard {
 
 SceneBoard ParseSceneBoard(const YamlNode& node);
 
-// The board's print as the simulator sees it: ink coverage of the page sampled finely.
-class BoardPrint {
- public:
-  explicit BoardPrint(const SceneBoard& board);
-  // Albedo at a point of the page (metres from its top-left); paper outside the page's ink.
-  double Albedo(double x, double y) const;
-  // Whether ink covers most of that point (for the anti-aliasing of edges).
-  bool Ink(double x, double y) const;
-  bool OnPage(double x, double y) const {
-    return x >= 0 && y >= 0 && x <= width_m_ && y <= height_m_;
-  }
-
- private:
-  double Coverage(double x, double y) const;
-  cv::Mat ink_;  // CV_8U, 255 = ink
-  double px_per_m_;
-  double width_m_, height_m_;
-  double paper_, ink_albedo_;
-};
+// The board's page as the simulator sees it.
+SheetPrint PrintOfBoard(const SceneBoard& board);
 
 }  // namespace brdfrig::sim

@@ -49,7 +49,10 @@ nlohmann::json TrueGeometry::ToJson() const {
 }
 
 Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
-  if (scene_.board) board_print_ = std::make_shared<const BoardPrint>(*scene_.board);
+  if (scene_.board) board_print_ = std::make_shared<const SheetPrint>(PrintOfBoard(*scene_.board));
+  if (scene_.rig.target.markers) {
+    mask_print_ = std::make_shared<const SheetPrint>(PrintOfMask(scene_.rig.target));
+  }
   if (scene_.effects.ambient) {
     // Reciprocity: the albedo for light from theta equals the albedo towards a viewer at theta.
     for (int i = 0; i < kAlbedoTableSize; ++i) {
@@ -88,7 +91,7 @@ TrueGeometry Simulator::GeometryAt(const geometry::AxisPositions& positions, boo
 cv::Mat Simulator::RenderRadiance(const geometry::AxisPositions& positions,
                                   const RenderOptions& options) const {
   return SynthesizeRadiance(scene_, GeometryAt(positions, options.light_on, options.board_pose),
-                            sample_albedo_, board_print_.get(), options.threads);
+                            sample_albedo_, board_print_.get(), mask_print_.get(), options.threads);
 }
 
 cv::Mat Simulator::Expose(const cv::Mat& radiance, double exposure_s, std::uint64_t frame,

@@ -95,7 +95,8 @@ class Simulator {
  private:
   Scene scene_;
   std::vector<brdf::Rgb> sample_albedo_;  // directional albedo by cos(theta_v); ambient only
-  std::shared_ptr<const BoardPrint> board_print_;  // the scene's board, rasterized once
+  std::shared_ptr<const SheetPrint> board_print_;  // the scene's board, rasterized once
+  std::shared_ptr<const SheetPrint> mask_print_;   // the rig's marker mask, rasterized once
 };
 
 }  // namespace brdfrig::sim

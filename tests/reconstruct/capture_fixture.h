@@ -62,6 +62,7 @@ struct SceneSpec {
   // Edge pixels average n×n rays: the simulated edge is exact to about 1/(2n) px, which bounds
   // the corner accuracy a test can ask for.
   int supersampling = 16;
+  std::string target = "{cutout: [0.1, 0.1], paper: [0.3, 0.3], paper_albedo: 0.8}";
   std::string extra;  // appended verbatim (e.g. faults)
 };
 
@@ -78,7 +79,9 @@ inline std::string SceneYaml(const SceneSpec& s) {
          "    - {name: camera_arm, moves: camera, direction: [1, 0, 0], range_deg: [-85, 85]}\n"
          "    - {name: light_arm, moves: light, direction: [1, 0, 0], range_deg: [-85, 85]}\n"
          "    - {name: light_azimuth, moves: light, direction: [0, 0, 1], range_deg: [-180, 180]}\n"
-         "  target: {cutout: [0.1, 0.1], paper: [0.3, 0.3], paper_albedo: 0.8}\n"
+         "  target: " +
+         s.target +
+         "\n"
          "sample:\n  brdf: " +
          s.brdf +
          "\n  size: [0.2, 0.2]\n"
