@@ -1,9 +1,10 @@
 // The pose from the marker mask against the pose from the cut-out's corners, on the measured
 // materials (issue 24 item 3). For each material: the default scene (its noise, its sensor)
-// with the rig's target a marker mask, captured at every position of the designed plan; each
-// position measured twice from the same photos, once with the rig's markers (the pose from the
-// markers' corners) and once without (the cut-out's four), each camera centre against the
-// simulator's truth. Prints a per-material table and the distribution over all positions.
+// captured at every position of the designed plan twice, on the plain mask and on the marker
+// mask. Each position's camera centre against the simulator's truth: from the markers (marker
+// mask), from the cut-out's corners (plain mask: the pose before the markers), and from the
+// cut-out's corners on the marker mask (the fallback when too few markers are found). Prints a
+// per-material table and the distribution over all positions.
 //
 //   bench_marker_pose [--measured-dir DIR] [--positions 6] [--width 1600 --height 1200]
 //                     [--every N] [--work DIR]
@@ -44,15 +45,18 @@ struct PoseError {
   std::string error;
 };
 
-PoseError Measure(const reconstruct::CapturePosition& position, geometry::RigGeometry rig,
-                  bool markers) {
-  if (!markers) rig.target.markers.reset();
+// One position measured with the rig as given; `cutout_only` forces the cut-out's corners
+// (a marker mask's fallback).
+PoseError Measure(const reconstruct::CapturePosition& position, const geometry::RigGeometry& rig,
+                  bool cutout_only) {
+  reconstruct::MeasureOptions options;
+  if (cutout_only) options.target.min_markers = 1 << 20;
   PoseError e;
   try {
     reconstruct::MeasureState state;
     const reconstruct::MeasuredPosition m =
-        reconstruct::MeasurePosition(position, rig, reconstruct::MeasureOptions{}, &state);
-    e.found = m.report.pose_from == (markers ? "markers" : "cut-out");
+        reconstruct::MeasurePosition(position, rig, options, &state);
+    e.found = m.report.pose_from == (rig.target.markers && !cutout_only ? "markers" : "cut-out");
     e.camera_mm = 1e3 * m.report.camera_disagreement_m;
     e.rms_px = m.report.reprojection_rms_px;
     e.points = m.report.pose_points;
@@ -62,10 +66,52 @@ PoseError Measure(const reconstruct::CapturePosition& position, geometry::RigGeo
   return e;
 }
 
+// The capture of `scene` at the plan's positions, as the reconstruction reads it (the rig as
+// the scene has it: the lab's rig file is right about the mask it printed).
+reconstruct::CaptureSet Capture(const std::shared_ptr<sim::Scene>& scene,
+                                const jobs::StudyPlan& plan, const fs::path& dir) {
+  fs::remove_all(dir);
+  sim::SimulateOptions options;
+  options.scene = fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml";
+  options.loaded_scene = scene;
+  options.output_dir = dir;
+  options.positions = plan.positions;
+  options.write_truth = false;
+  sim::Simulate(options);
+  reconstruct::CaptureSet capture = reconstruct::LoadSimulatedCapture(dir);
+  capture.nominal.target = scene->rig.target;
+  return capture;
+}
+
+// Camera-centre errors (mm) of the positions measured; failures counted.
+struct Column {
+  std::vector<double> mm;
+  int failed = 0;
+  int min_points = 1 << 30;
+  void Add(const PoseError& e) {
+    if (!e.found) {
+      ++failed;
+      return;
+    }
+    mm.push_back(e.camera_mm);
+    min_points = std::min(min_points, e.points);
+  }
+  void Append(const Column& other) {
+    mm.insert(mm.end(), other.mm.begin(), other.mm.end());
+    failed += other.failed;
+  }
+};
+
 double Percentile(std::vector<double> v, double p) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<std::size_t>(p * (v.size() - 1) + 0.5))];
+}
+
+std::string Cell(const Column& c) {
+  std::string text = Fixed(Percentile(c.mm, 0.5), 3) + " / " + Fixed(Percentile(c.mm, 1.0), 3);
+  if (c.failed > 0) text += " (" + std::to_string(c.failed) + " failed)";
+  return text;
 }
 
 int Run(const Args& a) {
@@ -75,74 +121,56 @@ int Run(const Args& a) {
   if (chosen.empty()) throw Error("no measured materials in " + a.measured_dir.string());
   const jobs::StudyPlan plan = jobs::DesignedPlan(a.positions);
   std::printf(
-      "Marker-mask pose vs cut-out pose: %zu materials, %s, %d×%d, the default scene's "
-      "noise; camera-centre error against the simulator's truth (mm)\n\n",
+      "Pose from the marker mask vs the cut-out: %zu materials, %s, %d×%d, the default "
+      "scene's noise; camera-centre error against the simulator's truth (mm)\n\n",
       chosen.size(), plan.name.c_str(), a.width, a.height);
   std::printf(
-      "| material | markers: median / worst mm | corners (min) | cut-out: median / worst mm "
-      "| positions the cut-out failed |\n| --- | ---: | ---: | ---: | ---: |\n");
-  std::vector<double> all_markers, all_cutout;
-  int marker_fallbacks = 0, cutout_failures = 0, total = 0;
+      "| material | marker mask, markers: median / worst mm (fewest corners) | plain mask, "
+      "cut-out: median / worst mm | marker mask, cut-out only: median / worst mm |\n"
+      "| --- | ---: | ---: | ---: |\n");
+  Column all_markers, all_plain, all_fallback;
   const auto start = std::chrono::steady_clock::now();
   for (const jobs::StudyMaterial& material : chosen) {
     jobs::StudySettings s;
     s.width = a.width;
     s.height = a.height;
     s.sample_brdf = material.brdf_yaml;
-    auto scene = std::make_shared<sim::Scene>(
+    auto plain = std::make_shared<sim::Scene>(
         jobs::StudyScene(fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml", s));
-    scene->rig.target.markers = geometry::MaskMarkerRing{};
-    const fs::path dir = a.work / material.name;
-    fs::remove_all(dir);
-    sim::SimulateOptions options;
-    options.scene = fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml";
-    options.loaded_scene = scene;
-    options.output_dir = dir;
-    options.positions = plan.positions;
-    options.write_truth = false;
-    sim::Simulate(options);
-    const reconstruct::CaptureSet capture = reconstruct::LoadSimulatedCapture(dir);
-    std::vector<double> with_markers, with_cutout;
-    int min_points = 1 << 30, failed = 0;
-    for (const reconstruct::CapturePosition& p : capture.positions) {
-      ++total;
-      const PoseError m = Measure(p, capture.nominal, true);
-      const PoseError c = Measure(p, capture.nominal, false);
-      if (m.found) {
-        with_markers.push_back(m.camera_mm);
-        min_points = std::min(min_points, m.points);
-      } else {
-        ++marker_fallbacks;
-      }
-      if (c.found) {
-        with_cutout.push_back(c.camera_mm);
-      } else {
-        ++failed;
-      }
+    auto marked = std::make_shared<sim::Scene>(*plain);
+    marked->rig.target.markers = geometry::MaskMarkerRing{};
+    const reconstruct::CaptureSet plain_capture = Capture(plain, plan, a.work / "plain");
+    const reconstruct::CaptureSet marked_capture = Capture(marked, plan, a.work / "marked");
+    Column markers, cutout, fallback;
+    for (std::size_t i = 0; i < plain_capture.positions.size(); ++i) {
+      cutout.Add(Measure(plain_capture.positions[i], plain_capture.nominal, false));
+      markers.Add(Measure(marked_capture.positions[i], marked_capture.nominal, false));
+      fallback.Add(Measure(marked_capture.positions[i], marked_capture.nominal, true));
     }
-    cutout_failures += failed;
-    all_markers.insert(all_markers.end(), with_markers.begin(), with_markers.end());
-    all_cutout.insert(all_cutout.end(), with_cutout.begin(), with_cutout.end());
-    std::printf("| %s | %s / %s | %d | %s / %s | %d |\n", material.name.c_str(),
-                Fixed(Percentile(with_markers, 0.5), 3).c_str(),
-                Fixed(Percentile(with_markers, 1.0), 3).c_str(),
-                with_markers.empty() ? 0 : min_points,
-                Fixed(Percentile(with_cutout, 0.5), 3).c_str(),
-                Fixed(Percentile(with_cutout, 1.0), 3).c_str(), failed);
+    std::printf("| %s | %s (%d) | %s | %s |\n", material.name.c_str(), Cell(markers).c_str(),
+                markers.mm.empty() ? 0 : markers.min_points, Cell(cutout).c_str(),
+                Cell(fallback).c_str());
     std::fflush(stdout);
-    fs::remove_all(dir);
+    all_markers.Append(markers);
+    all_plain.Append(cutout);
+    all_fallback.Append(fallback);
   }
+  fs::remove_all(a.work);
   std::printf(
-      "\nOver %d positions: markers median %s mm, 90th percentile %s, worst %s (%d fell "
-      "back to the cut-out); cut-out median %s mm, 90th percentile %s, worst %s (%d "
-      "without a pose). Wall %s s.\n",
-      total, Fixed(Percentile(all_markers, 0.5), 3).c_str(),
-      Fixed(Percentile(all_markers, 0.9), 3).c_str(),
-      Fixed(Percentile(all_markers, 1.0), 3).c_str(), marker_fallbacks,
-      Fixed(Percentile(all_cutout, 0.5), 3).c_str(), Fixed(Percentile(all_cutout, 0.9), 3).c_str(),
-      Fixed(Percentile(all_cutout, 1.0), 3).c_str(), cutout_failures,
-      Fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0)
-          .c_str());
+      "\n| over all positions | median mm | 90th percentile | worst | failed |\n"
+      "| --- | ---: | ---: | ---: | ---: |\n");
+  const std::pair<const char*, const Column*> rows[] = {
+      {"marker mask, markers", &all_markers},
+      {"plain mask, cut-out", &all_plain},
+      {"marker mask, cut-out only", &all_fallback}};
+  for (const auto& [name, c] : rows) {
+    std::printf("| %s | %s | %s | %s | %d of %zu |\n", name,
+                Fixed(Percentile(c->mm, 0.5), 3).c_str(), Fixed(Percentile(c->mm, 0.9), 3).c_str(),
+                Fixed(Percentile(c->mm, 1.0), 3).c_str(), c->failed, c->mm.size() + c->failed);
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("\nWall %s s.\n", Fixed(wall, 0).c_str());
   return 0;
 }
 

@@ -112,14 +112,15 @@ void DrawMask(cairo_t* cr, const MarkerMaskSpec& spec, bool with_text) {
               1e3 * spec.marker_m);
   }
   cairo_fill(cr);
-  // The cut line lies just outside the cut-out: cutting along its inner edge leaves the cut-out
-  // at its exact size.
+  // The cut line lies just inside the cut-out: cutting along its outer edge leaves the cut-out
+  // at its exact size and takes the line away with it, so the mask's edge is bare paper (a dark
+  // border left there would be found as the edge, and move it outwards by its width).
   const double line = 0.3;
   const double cw = 1e3 * spec.cutout_width_m, ch = 1e3 * spec.cutout_height_m;
   cairo_set_source_rgb(cr, 0.45, 0.45, 0.45);
   cairo_set_line_width(cr, line);
-  cairo_rectangle(cr, page_x(0) - 0.5 * cw - 0.5 * line, page_y(0) - 0.5 * ch - 0.5 * line,
-                  cw + line, ch + line);
+  cairo_rectangle(cr, page_x(0) - 0.5 * cw + 0.5 * line, page_y(0) - 0.5 * ch + 0.5 * line,
+                  cw - line, ch - line);
   cairo_stroke(cr);
   cairo_set_source_rgb(cr, 0, 0, 0);
   ScaleBar(cr, page_w, page_h - 1e3 * kScaleStripM, 1e3 * ScaleBarLength(spec.paper_width_m),
@@ -127,7 +128,7 @@ void DrawMask(cairo_t* cr, const MarkerMaskSpec& spec, bool with_text) {
   if (!with_text) return;
   Text(cr, page_x(0) - 0.5 * cw + 3, page_y(0), 3.0,
        "cut out " + Mm(spec.cutout_width_m) + " x " + Mm(spec.cutout_height_m) + " mm");
-  Text(cr, page_x(0) - 0.5 * cw + 3, page_y(0) + 5, 2.5, "along the line's inner edge");
+  Text(cr, page_x(0) - 0.5 * cw + 3, page_y(0) + 5, 2.5, "along the line's outer edge");
   cairo_set_source_rgb(cr, 0, 0, 0);
   const double ring_top = page_y(0.5 * spec.cutout_height_m + spec.gap_m + spec.marker_m);
   Text(cr, 0.5 * (page_w - 1e3 * spec.cutout_width_m) - 1e3 * (spec.gap_m + spec.marker_m),

@@ -162,6 +162,11 @@ TargetCorners FindCutoutCorners(const cv::Mat& radiance, const cv::Mat& valid,
   EdgeLineOptions edge_options;
   edge_options.search_band_m =
       options.search_band * std::min(target.cutout_width, target.cutout_height);
+  // On a marker mask the ring begins `gap` outside the cut-out: the band stays short of it, or
+  // the markers' edges would compete with the cut-out's.
+  if (target.markers) {
+    edge_options.search_band_m = std::min(edge_options.search_band_m, 0.8 * target.markers->gap);
+  }
   edge_options.corner_skip = options.corner_skip;
   edge_options.profile_step_px = options.profile_step_px;
   edge_options.min_log_step = options.min_log_step;
