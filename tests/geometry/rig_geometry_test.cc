@@ -40,6 +40,42 @@ TEST(RigGeometryTest, ParsesEverySection) {
   EXPECT_NEAR(rig.axes[0].max, M_PI / 3, 1e-12);
   EXPECT_DOUBLE_EQ(rig.target.cutout_height, 0.08);
   EXPECT_DOUBLE_EQ(rig.target.paper_albedo, 0.75);
+  EXPECT_FALSE(rig.target.markers) << "a plain mask unless the rig says otherwise";
+}
+
+TEST(RigGeometryTest, TargetMarkersDescribeTheMarkerMaskAndRefuseUnknownKeysAtTheirLine) {
+  std::string defaults = kRig;
+  defaults += "    markers: {}\n";
+  const RigGeometry plain_ring = Parse(defaults);
+  ASSERT_TRUE(plain_ring.target.markers);
+  EXPECT_DOUBLE_EQ(plain_ring.target.markers->marker, 0.02);
+  EXPECT_DOUBLE_EQ(plain_ring.target.markers->gap, 0.01);
+  EXPECT_EQ(plain_ring.target.markers->dictionary, "DICT_4X4_100");
+
+  std::string custom = kRig;
+  custom +=
+      "    markers: {size: 0.015, gap: 0.008, spacing: 0.006, dictionary: DICT_5X5_100, "
+      "first_id: 7}\n";
+  const RigGeometry ring = Parse(custom);
+  ASSERT_TRUE(ring.target.markers);
+  EXPECT_DOUBLE_EQ(ring.target.markers->marker, 0.015);
+  EXPECT_DOUBLE_EQ(ring.target.markers->gap, 0.008);
+  EXPECT_DOUBLE_EQ(ring.target.markers->spacing, 0.006);
+  EXPECT_EQ(ring.target.markers->dictionary, "DICT_5X5_100");
+  EXPECT_EQ(ring.target.markers->first_id, 7);
+
+  std::string typo = kRig;
+  typo += "    markers: {sise: 0.02}\n";
+  try {
+    Parse(typo);
+    FAIL() << "expected an error";
+  } catch (const FileError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("rig.yaml:20:15:"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("sise"));
+  }
+  std::string negative = kRig;
+  negative += "    markers: {gap: -0.01}\n";
+  EXPECT_THROW(Parse(negative), FileError);
 }
 
 TEST(RigGeometryTest, RestCameraSeesLookAtPointAtPrincipalPoint) {
