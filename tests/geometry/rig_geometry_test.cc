@@ -31,6 +31,16 @@ RigGeometry Parse(const std::string& text) {
   return ParseRigGeometry(LoadYamlString(text, "rig.yaml").Required("geometry"));
 }
 
+// What parsing `text` reports: the FileError's message, "" when it parses.
+std::string ParseError(const std::string& text) {
+  try {
+    Parse(text);
+  } catch (const FileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(RigGeometryTest, ParsesEverySection) {
   const RigGeometry rig = Parse(kRig);
   EXPECT_EQ(rig.intrinsics.width, 800);
@@ -66,13 +76,7 @@ TEST(RigGeometryTest, TargetMarkersDescribeTheMarkerMaskAndRefuseUnknownKeysAtTh
 
   std::string typo = kRig;
   typo += "    markers: {sise: 0.02}\n";
-  try {
-    Parse(typo);
-    FAIL() << "expected an error";
-  } catch (const FileError& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("rig.yaml:20:15:"));
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("sise"));
-  }
+  EXPECT_THAT(ParseError(typo), ::testing::HasSubstr("rig.yaml:20:15: unknown key"));
   std::string negative = kRig;
   negative += "    markers: {gap: -0.01}\n";
   EXPECT_THROW(Parse(negative), FileError);
@@ -131,13 +135,9 @@ TEST(RigGeometryTest, OutOfRangeOrUnknownAxisIsAnError) {
 TEST(RigGeometryTest, BadValuesPointAtFileAndLine) {
   std::string text = kRig;
   text.replace(text.find("moves: light"), 12, "moves: lamp ");
-  try {
-    Parse(text);
-    FAIL() << "expected an error";
-  } catch (const FileError& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("rig.yaml:14:"));
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("expected one of camera, light, sample"));
-  }
+  const std::string error = ParseError(text);
+  EXPECT_THAT(error, ::testing::HasSubstr("rig.yaml:14:"));
+  EXPECT_THAT(error, ::testing::HasSubstr("expected one of camera, light, sample"));
   std::string typo = kRig;
   typo.replace(typo.find("intensity"), 9, "intensty ");
   EXPECT_THROW(Parse(typo), FileError);
