@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>

@@ -121,11 +121,12 @@ class Shader {
     Vec3 point;
     const Surface surface = SurfaceAt(ray, &point);
     if (surface == kSky) return Rgb::Zero();
-    const brdf::Lambert paper = PaperAt(point);
+    const bool on_paper = surface == kPaper || surface == kMaskInk;
+    // The printed albedo is looked up on the paper only (the sample's pixels are most of them).
+    const brdf::Lambert paper = on_paper ? PaperAt(point) : paper_;
     const brdf::Brdf& material = surface == kSample ? *scene_.sample.brdf
-                                 : surface == kPaper || surface == kMaskInk
-                                     ? static_cast<const brdf::Brdf&>(paper)
-                                     : static_cast<const brdf::Brdf&>(table_);
+                                 : on_paper         ? static_cast<const brdf::Brdf&>(paper)
+                                                    : static_cast<const brdf::Brdf&>(table_);
     const Vec3 n = Vec3::UnitZ();
     const Vec3 view = (center_ - point).normalized();
     Rgb sum = Rgb::Zero();
@@ -138,8 +139,7 @@ class Shader {
       sum += material.Eval(l, view, n) * (e.intensity * cos_in / d2);
     }
     if (scene_.effects.ambient) {
-      sum += scene_.effects.ambient->radiance *
-             (surface == kPaper || surface == kMaskInk ? paper.albedo() : Albedo(surface, view));
+      sum += scene_.effects.ambient->radiance * (on_paper ? paper.albedo() : Albedo(surface, view));
     }
     return sum;
   }
