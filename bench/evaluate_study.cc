@@ -267,19 +267,8 @@ void Hemisphere(const HemisphereArgs& a) {
   options.work_dir = std::filesystem::temp_directory_path() / "brdfrig_hemisphere_study";
   // A measured material is judged by a prior that was never trained on it: the shipped prior's
   // settings rebuilt from every shipped material but that one.
-  const prior::PriorBuildOptions build = prior::OptionsOf(prior::DefaultPrior());
-  std::optional<prior::TrainingSet> training;
-  std::map<std::string, prior::MeasuredPrior> left_out;
-  options.prior_for = [&](const jobs::StudyMaterial& m) -> const prior::MeasuredPrior* {
-    if (!training) training = prior::ReadTrainingSet({brdf::NbrdfDirectory()}, build);
-    for (std::size_t i = 0; i < training->materials.size(); ++i) {
-      if (m.brdf_yaml != "{model: nbrdf, name: " + training->materials[i].name + "}") continue;
-      auto [it, added] = left_out.try_emplace(m.name);
-      if (added) it->second = prior::BuildPrior(*training, build, static_cast<int>(i));
-      return &it->second;
-    }
-    return nullptr;  // not a training material: the shipped prior never saw it
-  };
+  jobs::LeaveOneOutPriors priors;
+  options.prior_for = [&](const jobs::StudyMaterial& m) { return priors.For(m); };
   std::printf("\n## Hemisphere study (%zu materials, %dx%d, supersampling %d, plan %s, %s)\n\n",
               materials.size(), a.width, a.height, options.supersampling, plan.name.c_str(),
               a.model.empty() ? "every rung" : a.model.c_str());

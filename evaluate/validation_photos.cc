@@ -39,7 +39,7 @@ json ValidationPhotosJson(const std::vector<ValidationPhotoResult>& results,
                           {"relative_rmse", r.figures.relative_rmse_protocol}};
     }
     j["theta_in_deg"] = r.theta_in_deg;
-    j["light"] = r.light_from_highlight ? "highlight" : "nominal";
+    j["light"] = r.light;
     j["normalized_sample_psnr_db"] = JsonNumber(r.figures.normalized_sample.psnr_db);
     j["relative_rmse"] = JsonNumber(r.figures.relative_rmse);
     j["photo_peak"] = JsonNumber(r.figures.peak);

@@ -21,7 +21,7 @@ struct ValidationPhotoResult {
   bool measured = false;  // false: the photo could not be measured (reason in `error`)
   std::string error;
   double theta_in_deg = 0;  // incidence angle at the cut-out's centre (measured)
-  bool light_from_highlight = false;
+  std::string light;        // where its light came from: LightEstimate::Source()
   SampleFigures figures;
   // HDR radiance (CV_32FC3, B,G,R) of the photo and the prediction, cropped to the sample
   // pixels' bounding box, zero outside them; for the report's images.

@@ -1,48 +1,39 @@
 #include "geometry/rig_calibration.h"
 
-#include <vector>
-
 #include "common/sha256.h"
 #include "geometry/lens_calibration_file.h"
+#include "geometry/light_calibration_file.h"
 #include "geometry/rig_geometry.h"
 #include "geometry/white_reference_file.h"
 
 namespace brdfrig::geometry {
-namespace {
-
-struct Entry {
-  const char* key;
-  const char* name;  // for people
-  const std::filesystem::path* file;
-};
-
-std::vector<Entry> Entries(const RigCalibrationFiles& f) {
-  return {{"lens", "lens", &f.lens},
-          {"flat", "flat field", &f.flat},
-          {"white", "white reference", &f.white}};
+bool RigCalibrationFiles::Empty() const {
+  for (const CalibrationKind& kind : kCalibrationKinds) {
+    if (!(this->*kind.file).empty()) return false;
+  }
+  return true;
 }
-
-}  // namespace
 
 nlohmann::json RigCalibrationFiles::Provenance() const {
   nlohmann::json j = nlohmann::json::object();
-  for (const Entry& e : Entries(*this)) {
-    if (e.file->empty()) {
-      j[e.key] = "nominal";
+  for (const CalibrationKind& kind : kCalibrationKinds) {
+    const std::filesystem::path& file = this->*kind.file;
+    if (file.empty()) {
+      j[kind.key] = "nominal";
       continue;
     }
     Sha256 hash;
-    hash.UpdateFile(*e.file);
-    j[e.key] = {{"file", e.file->filename().string()}, {"sha256", hash.HexDigest()}};
+    hash.UpdateFile(file);
+    j[kind.key] = {{"file", file.filename().string()}, {"sha256", hash.HexDigest()}};
   }
   return j;
 }
 
 std::string RigCalibrationFiles::NominalOnes() const {
   std::string names;
-  for (const Entry& e : Entries(*this)) {
-    if (!e.file->empty()) continue;
-    names += (names.empty() ? "" : ", ") + std::string(e.name);
+  for (const CalibrationKind& kind : kCalibrationKinds) {
+    if (!(this->*kind.file).empty()) continue;
+    names += (names.empty() ? "" : ", ") + std::string(kind.name);
   }
   return names;
 }
@@ -55,6 +46,9 @@ void ApplyRigCalibration(const RigCalibrationFiles& files, const std::string& ca
   }
   if (!files.white.empty()) {
     geometry->target.paper_albedo = ReadWhiteReference(files.white).paper_albedo;
+  }
+  if (!files.light.empty()) {
+    geometry->light_position = ReadLightCalibration(files.light).light_position;
   }
 }
 

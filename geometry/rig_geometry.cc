@@ -186,7 +186,11 @@ CameraPose RigGeometry::CameraAt(const AxisPositions& positions) const {
 }
 
 Vec3 RigGeometry::LightAt(const AxisPositions& positions) const {
-  return Motions(*this, positions).second * light_position;
+  return LightMotion(positions) * light_position;
+}
+
+Eigen::Isometry3d RigGeometry::LightMotion(const AxisPositions& positions) const {
+  return Motions(*this, positions).second;
 }
 
 RigGeometry ParseRigGeometry(const YamlNode& node) {

@@ -70,6 +70,10 @@ struct RigGeometry {
   // `positions` are at 0. Throws brdfrig::Error for an unknown axis or one outside its limits.
   CameraPose CameraAt(const AxisPositions& positions) const;
   Vec3 LightAt(const AxisPositions& positions) const;
+  // The motion that carries the light from its rest position to where the axes put it
+  // (LightAt(p) = LightMotion(p) * light_position): a light calibration solves for the rest
+  // position through it.
+  Eigen::Isometry3d LightMotion(const AxisPositions& positions) const;
 };
 
 // A rig file read without opening any device (rig::ReadRigDescription, or a session's snapshot):

@@ -8,11 +8,13 @@
 #include <map>
 #include <sstream>
 
+#include "brdf/nbrdf_library.h"
 #include "common/angles.h"
 #include "common/error.h"
 #include "common/format.h"
 #include "coverage/designer.h"
 #include "evaluate/svg_plot.h"
+#include "prior/measured_prior.h"
 #include "sim/scene.h"
 
 namespace brdfrig::jobs {
@@ -145,6 +147,20 @@ std::string MaterialStudyRow::Report() const {
   return out.str();
 }
 
+const prior::MeasuredPrior* LeaveOneOutPriors::For(const StudyMaterial& material) {
+  const prior::PriorBuildOptions build = prior::OptionsOf(prior::DefaultPrior());
+  if (!training_) training_ = prior::ReadTrainingSet({brdf::NbrdfDirectory()}, build);
+  for (std::size_t i = 0; i < training_->materials.size(); ++i) {
+    if (material.brdf_yaml != "{model: nbrdf, name: " + training_->materials[i].name + "}") {
+      continue;
+    }
+    auto [it, added] = built_.try_emplace(material.name);
+    if (added) it->second = prior::BuildPrior(*training_, build, static_cast<int>(i));
+    return &it->second;
+  }
+  return nullptr;
+}
+
 std::string FileStem(const std::string& name) {
   std::string stem = name;
   for (char& c : stem) {
@@ -171,6 +187,9 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
   s.judge_every_rung = options.every_rung;
   s.judge_brdf_only = options.brdf_only;
   if (options.prior_for) s.prior = options.prior_for(material);
+  s.depart = options.depart;
+  s.believed_rig = options.believed_rig;
+  s.calibration = options.calibration;
   if (!options.keep_materials_dir.empty()) {
     fs::create_directories(options.keep_materials_dir);
     s.keep_material = options.keep_materials_dir / (FileStem(material.name) + ".json");

@@ -7,12 +7,15 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "evaluate/material_report.h"
 #include "geometry/rig_geometry.h"
 #include "jobs/study.h"
+#include "prior/build_prior.h"
 
 namespace brdfrig::jobs {
 
@@ -55,7 +58,24 @@ struct MaterialStudyOptions {
   // When set, each material's reconstructed material.json is kept as
   // keep_materials_dir/<FileStem(name)>.json.
   std::filesystem::path keep_materials_dir;
+  // A departed rig, the lab's belief and its calibrations (StudySettings has the same).
+  std::function<void(sim::Scene*)> depart;
+  std::optional<geometry::RigGeometry> believed_rig;
+  geometry::RigCalibrationFiles calibration;
   void Validate() const;  // throws OptionsError
+};
+
+// Judges a shipped measured material by a prior that was never trained on it: the shipped
+// prior's settings rebuilt from every shipped material but that one, on first use and kept.
+// For MaterialStudyOptions::prior_for; not thread-safe.
+class LeaveOneOutPriors {
+ public:
+  // nullptr for a material that is not in the training set: the shipped prior never saw it.
+  const prior::MeasuredPrior* For(const StudyMaterial& material);
+
+ private:
+  std::optional<prior::TrainingSet> training_;
+  std::map<std::string, prior::MeasuredPrior> built_;
 };
 
 // One rung's headline figures (same protocols as the row's).

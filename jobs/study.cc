@@ -98,6 +98,7 @@ sim::Scene StudyScene(const fs::path& base, const StudySettings& s) {
     const YamlNode root = LoadYamlString("effects: " + s.effects, "StudySettings.effects");
     scene.effects = sim::ParseEffects(root.Required("effects"));
   }
+  if (s.depart) s.depart(&scene);
   return scene;
 }
 
@@ -132,7 +133,11 @@ StudyResult RunStudyPoint(const StudySettings& s) {
   options.prior.prior = s.prior;
   // capture.json names the base scene; the nominal geometry is the edited scene's.
   reconstruct::CaptureSet capture = reconstruct::LoadCapture(scratch.path() / "capture");
-  capture.nominal = scene->rig;
+  capture.nominal = s.believed_rig.value_or(scene->rig);
+  if (!s.calibration.Empty()) {
+    geometry::ApplyRigCalibration(s.calibration, "", &capture.nominal);
+    capture.calibration = s.calibration;
+  }
   const reconstruct::ReconstructionResult fit = reconstruct::Reconstruct(capture, options);
   result.reconstruct_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

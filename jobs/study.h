@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "brdf/material_file.h"
 #include "evaluate/held_out.h"
 #include "evaluate/material_report.h"
+#include "geometry/rig_calibration.h"
 #include "geometry/rig_geometry.h"
 #include "prior/measured_prior.h"
 #include "sim/scene.h"
@@ -36,6 +38,14 @@ struct StudySettings {
   bool linear_interpolation = false;  // render with the seed's linear interpolation
   double view_elevation_deg = 40;
   std::vector<double> view_phis_deg = {0, 30, 60, 90, 120, 150, 180};
+  // A rig that departs from the scene file's (a distorting lens, a darker paper, a light off its
+  // nominal place): applied to the loaded scene, so the photos show the departed rig.
+  std::function<void(sim::Scene*)> depart;
+  // What the reconstruction believes about the rig instead of the scene's own (at the study's
+  // resolution), and the calibrations applied to that belief (their flat field divides the
+  // merged photos), as a lab's rig.yaml would give them.
+  std::optional<geometry::RigGeometry> believed_rig;
+  geometry::RigCalibrationFiles calibration;
   // Scratch space: the study makes a fresh directory inside it (creating work_dir when missing)
   // and removes only what it made.
   std::filesystem::path work_dir;

@@ -93,7 +93,7 @@ std::vector<evaluate::ValidationPhotoResult> CompareValidationPhotos(
       r.figures = evaluate::CompareSampleRadiance(state.hdr.radiance, predicted.radiance,
                                                   predicted.mask, "photo");
       r.theta_in_deg = Degrees(report.theta_in);
-      r.light_from_highlight = report.light.from_highlight;
+      r.light = report.light.Source();
       r.measured = true;
       if (options.keep_images) {
         KeepImages(state.hdr.radiance, predicted.radiance, predicted.mask, &r);

@@ -29,12 +29,20 @@ void LightOptions::Validate() const {
   }
 }
 
+const char* LightEstimate::Source() const {
+  return from_calibration ? "calibration" : from_highlight ? "highlight" : "nominal";
+}
+
 LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,
                             const geometry::TargetGeometry& target,
                             const geometry::Vec3& nominal_light, const LightOptions& options) {
   options.Validate();
   LightEstimate estimate;
   estimate.position = nominal_light;
+  if (!options.use_highlight) {
+    estimate.from_calibration = true;
+    return estimate;
+  }
   const double half_w = target.cutout_width / 2, half_h = target.cutout_height / 2;
   const double inset = options.edge_inset * std::min(target.cutout_width, target.cutout_height);
   const PlaneView::Box box = view.PixelBox(half_w, half_h);

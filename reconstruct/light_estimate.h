@@ -20,6 +20,9 @@
 namespace brdfrig::reconstruct {
 
 struct LightOptions {
+  // false: the rig's light is calibrated (geometry/light_calibration_file.h) and taken as it is;
+  // a highlight can only add its own error to a measured position.
+  bool use_highlight = true;
   double smoothing_px = 1.5;    // Gaussian sigma before the peak search (noise)
   double min_peak_ratio = 2.0;  // peak / median luminance in the cut-out below which there is
                                 // no highlight to speak of
@@ -34,11 +37,14 @@ struct LightOptions {
 struct LightEstimate {
   geometry::Vec3 position = geometry::Vec3::Zero();  // world, metres
   bool from_highlight = false;                       // false: the nominal light was used
-  bool saturated_peak = false;                       // the highlight is clipped in every exposure
+  bool from_calibration = false;  // the rig's calibrated light (LightOptions::use_highlight off)
+  bool saturated_peak = false;    // the highlight is clipped in every exposure
   cv::Point2d highlight_px{-1, -1};
   geometry::Vec3 highlight_in_world = geometry::Vec3::Zero();
   double nominal_disagreement_rad = 0;  // angle between measured and nominal light directions
   std::vector<std::string> warnings;
+  // "calibration", "highlight" or "nominal": for material.json's provenance.
+  const char* Source() const;
 };
 
 LightEstimate EstimateLight(const cv::Mat& radiance, const cv::Mat& valid, const PlaneView& view,

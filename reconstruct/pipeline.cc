@@ -147,6 +147,9 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
   MeasureOptions measure{options.hdr,          options.target,     options.light,
                          options.light_refine, options.radiometry, options.samples,
                          options.directions,   options.fit,        options.hdr_dir};
+  if (capture.calibration && !capture.calibration->light.empty()) {
+    measure.light.use_highlight = false;
+  }
   std::vector<PositionSamples> fit_positions, validation_positions;
   for (const CaptureSet::LeftOut& left : capture.left_out) {
     if (!options.use_positions.empty() && !Contains(options.use_positions, left.index)) continue;
@@ -306,7 +309,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
       p["pose_from"] = r.pose_from;
       p["pose_points"] = r.pose_points;
       p["reprojection_rms_px"] = r.reprojection_rms_px;
-      p["light_from_highlight"] = r.light.from_highlight;
+      p["light_from"] = r.light.Source();
       p["light_vs_nominal_deg"] = Degrees(r.light.nominal_disagreement_rad);
       p["light_refinement_deg"] = Degrees(r.light_refinement_rad);
       p["camera_vs_nominal_m"] = r.camera_disagreement_m;

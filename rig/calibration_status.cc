@@ -9,6 +9,7 @@
 #include "common/json_parse.h"
 #include "common/utc_time.h"
 #include "geometry/lens_calibration_file.h"
+#include "geometry/light_calibration_file.h"
 #include "geometry/white_reference_file.h"
 #include "rig/rig_file.h"
 
@@ -26,6 +27,13 @@ CalibrationState White(const std::filesystem::path& file) {
   const geometry::WhiteReference r = geometry::ReadWhiteReference(file);
   return {"white reference", file, r.created,
           Printf("paper albedo %.4f, tile spread %.2f %%", r.paper_albedo, 100 * r.tile_spread)};
+}
+
+CalibrationState LightState(const std::filesystem::path& file) {
+  const geometry::LightCalibration c = geometry::ReadLightCalibration(file);
+  return {"light", file, c.created,
+          Printf("RMS miss %.2f mm over %zu photos, %.1f mm from the nominal light",
+                 1e3 * c.rms_miss_m, c.photos.size(), 1e3 * c.nominal_offset_m)};
 }
 
 // The gain map's record is the JSON `rig calibrate flat` writes beside it (FILE.json).
@@ -80,7 +88,7 @@ std::string CalibrationStatus::ToString() const {
   }
   if (!Current()) {
     out +=
-        "recalibrate what is NOMINAL or STALE (`brdfrig rig calibrate lens|flat|white`, "
+        "recalibrate what is NOMINAL or STALE (`brdfrig rig calibrate lens|flat|white|light`, "
         "docs/calibration.md)\n";
   }
   return out;
@@ -95,7 +103,8 @@ CalibrationStatus ReadCalibrationStatus(const std::filesystem::path& rig_file) {
   status.calibrations = {
       files.lens.empty() ? CalibrationState{"lens"} : Lens(files.lens),
       files.flat.empty() ? CalibrationState{"flat field"} : Flat(files.flat),
-      files.white.empty() ? CalibrationState{"white reference"} : White(files.white)};
+      files.white.empty() ? CalibrationState{"white reference"} : White(files.white),
+      files.light.empty() ? CalibrationState{"light"} : LightState(files.light)};
   const auto changed = ParseUtcIso8601(rig.changed);
   for (CalibrationState& c : status.calibrations) {
     if (c.file.empty() || !changed) continue;

@@ -52,13 +52,13 @@ geometry::RigDescription ReadRigDescription(const std::filesystem::path& rig_fil
     // Measured values replace the nominal ones, never silently: each file must be there and of
     // this camera (geometry/rig_calibration.h refuses another one).
     geometry::RigCalibrationFiles& files = description.calibration;
-    for (auto [key, file] : {std::pair{"lens", &files.lens}, std::pair{"flat", &files.flat},
-                             std::pair{"white", &files.white}}) {
-      if (const auto entry = calibration->Optional(key)) {
-        *file = Resolve(base, entry->AsString());
+    for (const geometry::CalibrationKind& kind : geometry::kCalibrationKinds) {
+      if (const auto entry = calibration->Optional(kind.key)) {
+        std::filesystem::path& file = files.*kind.file;
+        file = Resolve(base, entry->AsString());
         std::error_code error;
-        if (!std::filesystem::is_regular_file(*file, error)) {
-          entry->Fail(std::string(key) + " calibration not found: " + file->string());
+        if (!std::filesystem::is_regular_file(file, error)) {
+          entry->Fail(std::string(kind.key) + " calibration not found: " + file.string());
         }
       }
     }

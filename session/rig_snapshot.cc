@@ -46,18 +46,6 @@ std::string SnapshotName(SqliteDb& db, const std::string& role) {
   return q.Step() ? q.Text(0) : std::string();
 }
 
-// Each calibration rig.yaml may reference (`calibration:` key), with its snapshot role.
-struct CalibrationRole {
-  fs::path* file;
-  const char* role;
-  const char* key;
-};
-std::vector<CalibrationRole> CalibrationRoles(geometry::RigCalibrationFiles& files) {
-  return {{&files.lens, "lens_calibration", "lens"},
-          {&files.flat, "flat_field", "flat"},
-          {&files.white, "white_reference", "white"}};
-}
-
 }  // namespace
 
 std::vector<SnapshotFile> WriteRigSnapshot(const fs::path& session_dir,
@@ -78,9 +66,9 @@ std::vector<SnapshotFile> WriteRigSnapshot(const fs::path& session_dir,
   for (std::size_t i = 1; i < rig.source_files.size(); ++i) {
     add(rig.source_files[i], "geometry", rig.source_files[i].filename().string());
   }
-  geometry::RigCalibrationFiles calibration = rig.calibration;
-  for (const auto& [file, role, key] : CalibrationRoles(calibration)) {
-    if (!file->empty()) add(*file, role, file->filename().string());
+  for (const geometry::CalibrationKind& kind : geometry::kCalibrationKinds) {
+    const fs::path& file = rig.calibration.*kind.file;
+    if (!file.empty()) add(file, kind.snapshot_role, file.filename().string());
   }
   for (const fs::path& scene : SceneFiles(rig.file)) {
     if (fs::exists(scene)) add(scene, "scene", scene.filename().string());
@@ -109,14 +97,14 @@ geometry::RigDescription ReadRigSnapshot(const fs::path& session_dir) {
     const auto calibration = root.Optional("calibration");
     if (!calibration) return;
     geometry::RigCalibrationFiles& files = description.calibration;
-    for (const auto& [file, role, key] : CalibrationRoles(files)) {
-      if (!calibration->Optional(key)) continue;
-      const std::string name = SnapshotName(db, role);
+    for (const geometry::CalibrationKind& kind : geometry::kCalibrationKinds) {
+      if (!calibration->Optional(kind.key)) continue;
+      const std::string name = SnapshotName(db, kind.snapshot_role);
       if (name.empty() || !fs::exists(rig_dir / name)) {
-        calibration->Fail(std::string("the session's rig snapshot lacks the ") + key +
+        calibration->Fail(std::string("the session's rig snapshot lacks the ") + kind.key +
                           " calibration");
       }
-      *file = rig_dir / name;
+      files.*kind.file = rig_dir / name;
     }
     const std::string model = root.Required("camera").Get("model", std::string());
     geometry::ApplyRigCalibration(files, model, &description.geometry);
@@ -155,9 +143,9 @@ std::vector<std::string> RigChangesSince(const fs::path& session_dir,
   };
   compare(rig.file, "rig");
   if (rig.source_files.size() > 1) compare(rig.source_files[1], "geometry");
-  geometry::RigCalibrationFiles calibration = rig.calibration;
-  for (const auto& [file, role, key] : CalibrationRoles(calibration)) {
-    if (!file->empty()) compare(*file, role);
+  for (const geometry::CalibrationKind& kind : geometry::kCalibrationKinds) {
+    const fs::path& file = rig.calibration.*kind.file;
+    if (!file.empty()) compare(file, kind.snapshot_role);
   }
   return changes;
 }

@@ -166,14 +166,15 @@ SimulateSummary Simulate(const SimulateOptions& options) {
     // The scene's roles apply to the scene's own positions, not to --positions.
     const bool validation = options.positions.empty() && p < scene.capture.validation.size() &&
                             scene.capture.validation[p];
-    nlohmann::json readings = nlohmann::json::object();
     for (const auto& [name, angle] : positions[p]) {
       if (!axes.count(name)) throw Error("positions: the scene has no axis named '" + name + "'");
-      const rig::MoveReport move =
-          WithRecovery([&, name = name, angle = angle] { return axes.at(name).MoveTo(angle); },
-                       camera, axes, &summary.recovered_faults);
-      readings[name] = move.position;
+      WithRecovery([&, name = name, angle = angle] { return axes.at(name).MoveTo(angle); }, camera,
+                   axes, &summary.recovered_faults);
     }
+    // Every axis's reading, as the run engine records them: an axis a position does not name
+    // stays where the previous one left it, and the reconstruction must know where that is.
+    nlohmann::json readings = nlohmann::json::object();
+    for (auto& [name, axis] : axes) readings[name] = axis.Status().position;
     for (std::size_t e = 0; e < exposures.size(); ++e) {
       const std::vector<rig::Frame> frames = WithRecovery(
           [&] {

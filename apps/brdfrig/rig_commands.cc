@@ -1,12 +1,15 @@
 #include "apps/brdfrig/rig_commands.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "apps/brdfrig/board_options.h"
 #include "calibrate/flat_field.h"
 #include "calibrate/lens_calibration.h"
+#include "calibrate/light_calibration.h"
 #include "calibrate/white_reference.h"
 #include "common/angles.h"
 #include "common/atomic_file.h"
@@ -14,7 +17,10 @@
 #include "common/exr_io.h"
 #include "common/utc_time.h"
 #include "common/yaml_reader.h"
+#include "geometry/light_calibration_file.h"
 #include "geometry/white_reference_file.h"
+#include "reconstruct/batch.h"
+#include "reconstruct/hdr_merge.h"
 #include "rig/calibration_status.h"
 #include "rig/rig_file.h"
 #include "rig/rig_tools.h"
@@ -39,8 +45,35 @@ struct RigArgs {
   calibrate::LensCalibrationOptions lens;
   calibrate::FlatFieldOptions flat;
   calibrate::WhiteReferenceOptions white;
-  std::string scene, flat_file, position;
+  calibrate::LightCalibrationOptions light;
+  std::string scene, flat_file, position, capture;
 };
+
+// What the lab believes about the rig, for a calibration that needs the geometry: rig.yaml (its
+// calibrations applied) or a scene's `rig:`; nullopt when neither is given.
+std::optional<geometry::RigGeometry> BelievedGeometry(const RigArgs& args) {
+  if (!args.rig.empty()) return rig::ReadRigDescription(args.rig).geometry;
+  if (!args.scene.empty()) {
+    return geometry::ParseRigGeometry(LoadYamlFile(args.scene).Required("rig"));
+  }
+  return std::nullopt;
+}
+
+// A light calibration's photos from a capture: at each position its shortest exposure, where
+// the mirror's highlight is least clipped.
+std::vector<calibrate::LightPhoto> LightPhotos(const reconstruct::CaptureSet& capture) {
+  std::vector<calibrate::LightPhoto> photos;
+  for (const reconstruct::CapturePosition& position : capture.positions) {
+    if (position.frames.empty()) continue;
+    const auto shortest =
+        std::min_element(position.frames.begin(), position.frames.end(),
+                         [](const auto& a, const auto& b) { return a.exposure_s < b.exposure_s; });
+    photos.push_back(
+        {{shortest->file.filename().string(), reconstruct::ReadPhoto(shortest->file.string())},
+         position.axis_readings});
+  }
+  return photos;
+}
 
 // Faults for the simulated drive, to rehearse what an operator sees (docs/rig.md, faults).
 void DriveFaultsOptions(CLI::App* cmd, sim::DriveFaults& faults) {
@@ -202,14 +235,9 @@ void RegisterRigCommands(CLI::App& app) {
   white->add_option("--position", args->position,
                     "Where the arms stood: axis=degrees[,axis=degrees...] (default: at rest)");
   white->callback([args] {
-    geometry::RigGeometry geometry;
-    if (!args->rig.empty()) {
-      geometry = rig::ReadRigDescription(args->rig).geometry;
-    } else if (!args->scene.empty()) {
-      geometry = geometry::ParseRigGeometry(LoadYamlFile(args->scene).Required("rig"));
-    } else {
-      throw Error("rig calibrate white: give --rig rig.yaml or --scene scene.yaml");
-    }
+    const std::optional<geometry::RigGeometry> believed = BelievedGeometry(*args);
+    if (!believed) throw Error("rig calibrate white: give --rig rig.yaml or --scene scene.yaml");
+    const geometry::RigGeometry& geometry = *believed;
     calibrate::WhiteReferenceOptions options = args->white;
     if (!args->position.empty()) options.positions = sim::ParsePositionsDegrees(args->position);
     if (!args->flat_file.empty()) {
@@ -232,6 +260,45 @@ void RegisterRigCommands(CLI::App& app) {
     for (const auto& p : photos) reference.photos.push_back(p.name);
     geometry::WriteWhiteReference(args->output, reference);
     std::printf("%s\nwrote %s\n", result.ToString().c_str(), args->output.c_str());
+  });
+
+  CLI::App* light = calibrate->add_subcommand(
+      "light",
+      "The light's position at rest from a capture of a mirror tile (polished black glass) in "
+      "the cut-out, at positions whose mirror points spread over it; writes a JSON file for "
+      "rig.yaml's `calibration: {light: FILE}` (never edits rig.yaml)");
+  light->add_option("capture", args->capture, "The capture: a session, or `brdfrig simulate`'s")
+      ->required();
+  light->add_option("-o,--output", args->output, "File to write (JSON)")->required();
+  auto* light_rig =
+      light->add_option("--rig", args->rig, "rig.yaml: the geometry (default: the capture's)");
+  light->add_option("--scene", args->scene, "scene.yaml: the geometry")->excludes(light_rig);
+  light->add_option("--max-miss", args->light.max_miss_m,
+                    "Largest distance (m) of the light from a photo's ray (default 0.002)");
+  light->callback([args] {
+    const reconstruct::CaptureSet capture = reconstruct::LoadCapture(args->capture);
+    const geometry::RigGeometry geometry = BelievedGeometry(*args).value_or(capture.nominal);
+    const std::vector<calibrate::LightPhoto> photos = LightPhotos(capture);
+    const calibrate::LightCalibrationResult result =
+        calibrate::CalibrateLight(photos, geometry, args->light);
+    geometry::LightCalibration c;
+    c.created = NowUtcIso8601();
+    c.software = std::string("brdfrig ") + BRDFRIG_VERSION;
+    c.light_position = result.light_position;
+    c.nominal_offset_m = result.nominal_offset_m;
+    c.rms_miss_m = result.rms_miss_m;
+    c.dilution = result.dilution;
+    for (std::size_t i = 0; i < photos.size(); ++i) {
+      geometry::LightCalibrationPhoto p;
+      p.photo = result.photos[i].name;
+      for (const auto& [axis, angle] : photos[i].positions) p.positions_deg[axis] = Degrees(angle);
+      p.highlight_x = result.photos[i].highlight_x;
+      p.highlight_y = result.photos[i].highlight_y;
+      p.miss_m = result.photos[i].miss_m;
+      c.photos.push_back(p);
+    }
+    geometry::WriteLightCalibration(args->output, c);
+    std::printf("%swrote %s\n", result.ToString().c_str(), args->output.c_str());
   });
 }
 

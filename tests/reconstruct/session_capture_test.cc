@@ -7,8 +7,10 @@
 #include "acquire/capture.h"
 #include "common/exr_io.h"
 #include "common/sha256.h"
+#include "geometry/light_calibration_file.h"
 #include "reconstruct/batch.h"
 #include "reconstruct/pipeline.h"
+#include "rig/rig_file.h"
 #include "sim/devices.h"
 #include "tests/reconstruct/capture_fixture.h"
 
@@ -143,6 +145,33 @@ TEST(SessionCapture, FlatFieldCalibrationUndoesTheCamerasVignetting) {
     said = said || w.find("nominal values for: lens, white reference") != std::string::npos;
   }
   EXPECT_TRUE(said) << "no warning that the lens and white reference are nominal";
+}
+
+// A calibrated light is taken as measured: no position moves it to its highlight, material.json
+// says where each position's light came from, and the fit is as exact as the ideal session's.
+TEST(SessionCapture, CalibratedLightIsUsedAsMeasured) {
+  SessionSetup s = MakeSession("light_calibrated");
+  geometry::LightCalibration light;
+  light.created = "2026-12-03T09:00:00Z";
+  light.light_position = rig::ReadRigDescription(s.dir / "rig.yaml").geometry.light_position;
+  geometry::WriteLightCalibration(s.dir / "light.json", light);
+  std::ofstream(s.dir / "rig.yaml", std::ios::app) << "calibration: {light: light.json}\n";
+  ASSERT_EQ(acquire::RunCapture(s.capture).run.status, acquire::ExitStatus::kSuccess);
+  const CaptureSet capture = LoadCapture(s.dir / "session");
+  ASSERT_TRUE(capture.calibration.has_value());
+  EXPECT_EQ(capture.calibration->light.filename(), "light.json");
+  const ReconstructionResult result = Reconstruct(capture, testing::SeedOnly());
+  const nlohmann::json& provenance = result.material.provenance;
+  ASSERT_EQ(provenance.at("positions").size(), 3u);
+  for (const nlohmann::json& p : provenance.at("positions")) {
+    EXPECT_EQ(p.at("light_from"), "calibration") << p.dump();
+    EXPECT_EQ(p.at("light_refinement_deg"), 0.0) << p.dump();
+  }
+  EXPECT_EQ(provenance.at("calibration").at("light").at("sha256"),
+            Sha256FileHex(s.dir / "light.json"));
+  const double error = testing::WorstSliceError(result.material, testing::FlatSliceTruth());
+  std::printf("worst level error with the calibrated light: %.4f %%\n", 100 * error);
+  EXPECT_LT(error, 1e-3);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
-// rig.yaml's `calibration: {lens, flat, white}` and `changed:`: the measured intrinsics and paper
-// albedo replace the geometry's, a calibration of another camera or a missing file is an error
-// at the line that names it, and `rig calibrate status` tells what is nominal and what stale.
+// rig.yaml's `calibration: {lens, flat, white, light}` and `changed:`: the measured intrinsics,
+// paper albedo and light position replace the geometry's, a calibration of another camera or a
+// missing file is an error at the line that names it, and `rig calibrate status` tells what is
+// nominal and what stale.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "common/error.h"
 #include "common/utc_time.h"
 #include "geometry/lens_calibration_file.h"
+#include "geometry/light_calibration_file.h"
 #include "geometry/white_reference_file.h"
 #include "rig/calibration_status.h"
 #include "rig/rig_file.h"
@@ -47,6 +49,16 @@ class RigCalibrationTest : public ::testing::Test {
     r.reference_albedo = 0.5;
     r.tile_spread = 0.004;
     geometry::WriteWhiteReference(dir_ / "white.json", r);
+  }
+  void WriteLight(const geometry::Vec3& position, const std::string& created) {
+    geometry::LightCalibration c;
+    c.created = created;
+    c.light_position = position;
+    c.nominal_offset_m = 0.005;
+    c.rms_miss_m = 0.00002;
+    c.dilution = 11;
+    c.photos.resize(5);
+    geometry::WriteLightCalibration(dir_ / "light.json", c);
   }
   fs::path dir_;
 };
@@ -88,11 +100,29 @@ TEST_F(RigCalibrationTest, WhiteReferenceReplacesThePaperAlbedoAndTheFlatFieldIs
   EXPECT_EQ(rig.calibration.white, dir_ / "white.json");
   EXPECT_EQ(rig.calibration.flat, dir_ / "flat.exr");
   EXPECT_TRUE(rig.calibration.lens.empty());
-  EXPECT_EQ(rig.calibration.NominalOnes(), "lens");
+  EXPECT_EQ(rig.calibration.NominalOnes(), "lens, light");
   const nlohmann::json provenance = rig.calibration.Provenance();
   EXPECT_EQ(provenance["lens"], "nominal");
   EXPECT_EQ(provenance["white"]["file"], "white.json");
   EXPECT_EQ(provenance["flat"]["sha256"].get<std::string>().size(), 64u);
+}
+
+TEST_F(RigCalibrationTest, LightCalibrationReplacesTheNominalLightPosition) {
+  const geometry::Vec3 measured(0.003, 0.004, 0.6001);
+  WriteLight(measured, "2026-12-03T09:00:00Z");
+  const geometry::RigDescription rig =
+      ReadRigDescription(WriteRig("calibration: {light: light.json}"));
+  EXPECT_EQ(rig.geometry.light_position, measured);
+  EXPECT_EQ(rig.calibration.light, dir_ / "light.json");
+  EXPECT_EQ(rig.calibration.Provenance()["light"]["file"], "light.json");
+  WriteLight({0.003, 0.004, -0.6}, "2026-12-03T09:00:00Z");  // below the sample: not a light
+  try {
+    ReadRigDescription(WriteRig("calibration: {light: light.json}"));
+    FAIL() << "expected a refusal";
+  } catch (const FileError& e) {
+    EXPECT_EQ(e.line(), 3) << e.what();
+    EXPECT_NE(std::string(e.what()).find("above the sample plane"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(RigCalibrationTest, MissingOrMalformedCalibrationsAndBadDatesAreErrorsAtTheirLine) {
@@ -140,10 +170,15 @@ TEST_F(RigCalibrationTest, StatusNamesNominalAndStaleCalibrations) {
   std::ofstream(dir_ / "flat.exr") << "a gain map";
   std::ofstream(dir_ / "flat.exr.json") << R"({"created": "2026-12-02T12:00:00Z",
                                               "fit_rms": 0.004, "min_gain": 0.8, "max_gain": 1.1})";
-  const std::string all = "calibration: {lens: lens.json, flat: flat.exr, white: white.json}";
+  WriteLight({0.003, 0.004, 0.6}, "2026-12-02T13:00:00Z");
+  const std::string all =
+      "calibration: {lens: lens.json, flat: flat.exr, white: white.json, light: light.json}";
   status = ReadCalibrationStatus(WriteRig(all, "changed: 2026-12-01\n"));
   EXPECT_TRUE(status.Current()) << status.ToString();
-  ASSERT_EQ(status.calibrations.size(), 3u);
+  ASSERT_EQ(status.calibrations.size(), 4u);
+  EXPECT_NE(status.calibrations[3].figure.find("RMS miss 0.02 mm over 5 photos, 5.0 mm from"),
+            std::string::npos)
+      << status.calibrations[3].figure;
   EXPECT_EQ(status.calibrations[1].created, "2026-12-02T12:00:00Z");
   EXPECT_NE(status.calibrations[1].figure.find("fit RMS 0.40 %"), std::string::npos)
       << status.calibrations[1].figure;
@@ -155,6 +190,7 @@ TEST_F(RigCalibrationTest, StatusNamesNominalAndStaleCalibrations) {
   EXPECT_TRUE(status.calibrations[0].stale);
   EXPECT_FALSE(status.calibrations[1].stale);
   EXPECT_FALSE(status.calibrations[2].stale);
+  EXPECT_FALSE(status.calibrations[3].stale);
   EXPECT_NE(status.ToString().find("STALE"), std::string::npos) << status.ToString();
 
   // A gain map without its record is of unknown age: stale once the rig says when it changed.
