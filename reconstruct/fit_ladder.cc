@@ -99,6 +99,10 @@ void LadderOptions::Validate() const {
         "LadderOptions.model = gltf; not a rung of the ladder (the glTF version "
         "of the chosen rung is written with every material)");
   }
+  if (!(prior_allowance >= 1)) {
+    throw OptionsError("LadderOptions.prior_allowance = " + std::to_string(prior_allowance) +
+                       "; must be >= 1");
+  }
   slice.Validate();
   microfacet.Validate();
   prior.Validate();
@@ -299,12 +303,16 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
                           : MaxAlbedo(*rung.material.Model()).albedo;
   }
   // A material unlike the prior's training set is left to the data and the compact forms.
+  const auto compared = [&](const RungResult& rung) {
+    const bool allowed = validate && rung.kind == brdf::ModelKind::kPrior;
+    return allowed ? rung.score / options.prior_allowance : rung.score;
+  };
   const auto choose = [&](bool strict) {
     for (std::size_t r = 0; r < result.rungs.size(); ++r) {
       const RungResult& rung = result.rungs[r];
       if (!rung.fitted || (strict && !rung.ConservesEnergy())) continue;
       if (strict && OutsidePrior(rung.material)) continue;
-      if (result.chosen < 0 || rung.score < result.rungs[result.chosen].score) {
+      if (result.chosen < 0 || compared(rung) < compared(result.rungs[result.chosen])) {
         result.chosen = static_cast<int>(r);
       }
     }

@@ -32,6 +32,15 @@ struct LadderOptions {
   MicrofacetFitOptions microfacet;
   PriorRungOptions prior;
   bool validate = true;  // LOPO folds (false: every rung fitted once, the choice by residual)
+  // The measured prior's validation score is divided by this before the rungs are compared.
+  // The folds of a designed plan share no (θh, θd) cell (docs/ladder_choice.md), so each asks a
+  // rung to predict a patch no remaining photo sees: the compact forms' one smooth curve
+  // extrapolates calmly there and scores well even where, fitted to all photos, the prior is
+  // better. Measured over the 80 measured and 9 analytic materials' studies (each measured one
+  // judged by the prior built without it): 1 is validation as it was (sphere mean 30.9 / 49.1
+  // dB), 2 gives 31.6 / 48.6 dB and albedo within 10 % on 27 of 80 measured materials instead
+  // of 20; the measured figure is flat from 1.75 to 3, the analytic one falls past 2.
+  double prior_allowance = 2;
   void Validate() const;
 };
 

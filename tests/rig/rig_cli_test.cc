@@ -8,9 +8,11 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -94,6 +96,39 @@ TEST_F(RigCliTest, CalibrateStatusExitsThreeWhileTheRigRunsOnNominalValues) {
   EXPECT_EQ(status.status, 3) << status.output;
   EXPECT_NE(status.output.find("lens             NOMINAL"), std::string::npos) << status.output;
   EXPECT_NE(status.output.find("recalibrate"), std::string::npos) << status.output;
+}
+
+// `rig calibrate light` on a simulated capture of the mirror tile (at 640 x 480 to keep it
+// short): the file it writes holds the scene's true light, not the rig file's nominal one; a
+// directory that is no capture is an error naming it.
+TEST_F(RigCliTest, CalibrateLightWritesTheTrueLightFromAMirrorTileCapture) {
+  std::ifstream in(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/mirror_tile.yaml");
+  std::string yaml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string full = "resolution: [1600, 1200]";
+  ASSERT_NE(yaml.find(full), std::string::npos);
+  yaml.replace(yaml.find(full), full.size(), "resolution: [640, 480]");
+  std::ofstream(dir_ / "mirror.yaml") << yaml;
+  const std::string capture = (dir_ / "capture").string();
+  ASSERT_EQ(Brdfrig("simulate " + (dir_ / "mirror.yaml").string() + " -o " + capture).status, 0);
+  const std::string light = (dir_ / "light.json").string();
+  const Result calibrated = Brdfrig("rig calibrate light " + capture + " --scene " +
+                                    (dir_ / "mirror.yaml").string() + " -o " + light);
+  ASSERT_EQ(calibrated.status, 0) << calibrated.output;
+  EXPECT_NE(calibrated.output.find("from 5 photos"), std::string::npos) << calibrated.output;
+  std::ifstream file(light);
+  const std::string json((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"brdfrig-light-calibration\""), std::string::npos) << json;
+  // The scene's true light is [0.003, 0.004, 0.6] (metres); its rig file would say [0, 0, 0.6].
+  const std::size_t at = json.find("\"light_position\"");
+  ASSERT_NE(at, std::string::npos) << json;
+  double x = 0, y = 0, z = 0;
+  ASSERT_EQ(std::sscanf(json.c_str() + json.find('[', at), "[ %lf , %lf , %lf", &x, &y, &z), 3)
+      << json;
+  EXPECT_LT(std::hypot(x - 0.003, y - 0.004, z - 0.6), 0.001) << json;
+
+  const Result refused = Brdfrig("rig calibrate light " + dir_.string() + " -o " + light);
+  EXPECT_NE(refused.status, 0);
+  EXPECT_NE(refused.output.find(dir_.string()), std::string::npos) << refused.output;
 }
 
 TEST_F(RigCliTest, CheckExitsNonZeroWithTheReasonWhenADriveIsMissing) {
