@@ -38,7 +38,7 @@ struct LadderOptions {
   // extrapolates calmly there and scores well even where, fitted to all photos, the prior is
   // better. Measured over the 80 measured and 9 analytic materials' studies (each measured one
   // judged by the prior built without it): 1 is validation as it was (sphere mean 30.9 / 49.1
-  // dB), 2 gives 31.6 / 48.6 dB and albedo within 10 % on 27 of 80 measured materials instead
+  // dB), 2 gives 31.6 / 48.4 dB and albedo within 10 % on 27 of 80 measured materials instead
   // of 20; the measured figure is flat from 1.75 to 3, the analytic one falls past 2.
   double prior_allowance = 2;
   void Validate() const;

@@ -26,6 +26,14 @@ std::string MirrorSceneYaml() {
   return ReadFileToString(std::string(BRDFRIG_SOURCE_DIR) + "/sim/scenes/mirror_tile.yaml");
 }
 
+// The same scene at 640 x 480: the refusals do not depend on the pixel count.
+std::string SmallMirrorSceneYaml() {
+  std::string yaml = MirrorSceneYaml();
+  const std::string full = "resolution: [1600, 1200]";
+  yaml.replace(yaml.find(full), full.size(), "resolution: [640, 480]");
+  return yaml;
+}
+
 // One photo at each of the scene's capture positions (its shortest exposure).
 std::vector<LightPhoto> Photos(const sim::Scene& scene) {
   auto world = std::make_shared<sim::SimWorld>(scene);
@@ -110,7 +118,7 @@ TEST_F(LightCalibrationTest, TooFewPhotosAreRefused) {
 }
 
 TEST(LightCalibrationRefusalTest, MatteTileHasNoMirrorHighlight) {
-  std::string yaml = MirrorSceneYaml();
+  std::string yaml = SmallMirrorSceneYaml();
   const std::string glass = "{model: ggx, alpha: 0.01, f0: 0.04, diffuse: 0}";
   ASSERT_NE(yaml.find(glass), std::string::npos);
   yaml.replace(yaml.find(glass), glass.size(), "{model: lambert, albedo: 0.5}");
@@ -124,7 +132,7 @@ TEST(LightCalibrationRefusalTest, MatteTileHasNoMirrorHighlight) {
 TEST(LightCalibrationRefusalTest, MirrorPointsAllAtTheCentreCannotTellTheDistance) {
   // Symmetric arms put every mirror point at the cut-out's centre: in the light's own frame the
   // rays coincide, whatever the arms' angles.
-  std::string yaml = MirrorSceneYaml();
+  std::string yaml = SmallMirrorSceneYaml();
   const std::size_t from = yaml.find("  positions:");
   const std::size_t to = yaml.find("\neffects:");
   yaml.replace(from, to - from,
