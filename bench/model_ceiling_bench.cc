@@ -1,9 +1,12 @@
-// What each microfacet rung of the ladder can reach when the data are perfect: the rung fitted
-// to noise-free samples of the true BRDF, judged by the sphere test. Two data sets per material:
+// What each rung of the ladder can reach when the data are perfect: the rung fitted to
+// noise-free samples of the true BRDF, judged by the sphere test. The prior rung of a measured
+// material uses the prior built without that material (jobs::LeaveOneOutPriors). Four data sets
+// per material:
 //   dense     l and v over the whole hemisphere (the model form's ceiling)
 //   designed  the directions the designed plan's photos see across the cut-out (nominal rig
 //             geometry, coverage/), f from the truth: the plan's ceiling without the capture
-//   captured  the study's simulated capture of the designed plan (400x300 px, 14-bit, noise),
+//   captured  the study's simulated capture of the designed plan (400x300 px unless --size,
+//             14-bit, noise),
 //             measured by the reconstruction's own MeasurePosition: what the rungs get
 //   geometry  the captured samples' directions with f from the truth: the capture's measured
 //             geometry (pose, light) without its radiometry
@@ -18,6 +21,7 @@
 // best rung by sphere). How the default rule was chosen; run it before changing that rule.
 //
 //   bench_model_ceiling [--set analytic|measured|all] [--materials a,b,...] [--positions N]
+//                       [--rungs ggx,beckmann,microfacet,prior] [--size WxH] [--effects YAML]
 //                       [--choice [--validation N]]
 // --validation N adds N validation positions (coverage::DesignOptions::validation) to the plan
 // of --choice and compares the folds alone, the validation photos alone and both (the product).
@@ -72,13 +76,21 @@ reconstruct::PositionSamples DenseSamples(const brdf::Brdf& truth) {
 }
 
 // The study's capture of `material` on `plan`, measured position by position.
+// How the study's capture is taken: its size and the sensor's effects (empty: the scene's).
+struct CaptureSize {
+  int width = 400, height = 300;
+  std::string effects;
+};
+
 std::vector<reconstruct::PositionSamples> CapturedSamples(const jobs::StudyMaterial& material,
                                                           const jobs::StudyPlan& plan,
-                                                          const fs::path& work) {
+                                                          const fs::path& work,
+                                                          CaptureSize size = {}) {
   const fs::path base = fs::path(BRDFRIG_SOURCE_DIR) / "sim/scenes/default.yaml";
   jobs::StudySettings settings;
-  settings.width = 400;
-  settings.height = 300;
+  settings.width = size.width;
+  settings.height = size.height;
+  settings.effects = size.effects;
   settings.supersampling = 1;
   settings.sample_brdf = material.brdf_yaml;
   const auto scene = std::make_shared<const sim::Scene>(jobs::StudyScene(base, settings));
@@ -234,10 +246,9 @@ struct Cell {
 };
 
 Cell Judge(brdf::ModelKind kind, const std::vector<reconstruct::PositionSamples>& positions,
-           const brdf::Brdf& truth) {
+           const brdf::Brdf& truth, const reconstruct::LadderOptions& options) {
   std::vector<const reconstruct::PositionSamples*> all;
   for (const auto& p : positions) all.push_back(&p);
-  reconstruct::LadderOptions options;
   try {
     const brdf::Material m = reconstruct::FitRung(kind, all, options, false);
     const evaluate::SphereTestResult r = evaluate::SphereTest(truth, *m.Model());
@@ -266,6 +277,8 @@ int main(int argc, char** argv) {
   std::string set = "all";
   std::vector<std::string> only;
   int count = 6;
+  std::vector<std::string> rungs = {"ggx", "beckmann", "microfacet", "prior"};
+  CaptureSize size;
   bool choice = false;
   int validation = 0;
   for (int i = 1; i < argc; ++i) {
@@ -276,6 +289,13 @@ int main(int argc, char** argv) {
       only = SplitList(argv[++i]);
     } else if (std::strcmp(argv[i], "--positions") == 0 && more) {
       count = std::stoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--rungs") == 0 && more) {
+      rungs = SplitList(argv[++i]);
+    } else if (std::strcmp(argv[i], "--size") == 0 && more &&
+               std::sscanf(argv[i + 1], "%dx%d", &size.width, &size.height) == 2) {
+      ++i;
+    } else if (std::strcmp(argv[i], "--effects") == 0 && more) {
+      size.effects = argv[++i];
     } else if (std::strcmp(argv[i], "--choice") == 0) {
       choice = true;
     } else if (std::strcmp(argv[i], "--validation") == 0 && more) {
@@ -283,7 +303,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_model_ceiling [--set analytic|measured|all] "
-                   "[--materials a,b] [--positions N] [--choice [--validation N]]\n");
+                   "[--materials a,b] [--positions N] [--rungs a,b] [--size WxH] [--effects YAML] "
+                   "[--choice [--validation N]]\n");
       return 2;
     }
   }
@@ -333,17 +354,20 @@ int main(int argc, char** argv) {
     std::printf("\n");
     return 0;
   }
-  const brdf::ModelKind kinds[] = {brdf::ModelKind::kGgx, brdf::ModelKind::kBeckmann,
-                                   brdf::ModelKind::kMicrofacet};
+  std::vector<brdf::ModelKind> kinds;
+  for (const std::string& name : rungs) kinds.push_back(brdf::ParseModelKind(name));
   std::printf(
       "Sphere test mean (worst light) in dB of each rung fitted to noise-free truth "
-      "samples.\nPlan: %s\n\n| material | data |",
-      plan.name.c_str());
+      "samples.\nPlan: %s; capture %dx%d px\n\n| material | data |",
+      plan.name.c_str(), size.width, size.height);
   for (brdf::ModelKind k : kinds) std::printf(" %s |", brdf::ModelKindName(k));
-  std::printf("\n|---|---|---|---|---|\n");
+  std::printf("\n|---|---|");
+  for (std::size_t k = 0; k < kinds.size(); ++k) std::printf("---|");
+  std::printf("\n");
+  jobs::LeaveOneOutPriors priors;
   constexpr int kData = 4;
   const char* names[kData] = {"dense", "designed", "geometry", "captured"};
-  std::vector<double> sums(kData * std::size(kinds), 0.0);
+  std::vector<double> sums(kData * kinds.size(), 0.0);
   std::vector<std::string> biases;
   int judged = 0;
   const auto start = std::chrono::steady_clock::now();
@@ -353,9 +377,19 @@ int main(int argc, char** argv) {
     }
     const YamlNode root = LoadYamlString("brdf: " + material.brdf_yaml, material.name);
     const auto truth = sim::ParseSampleBrdf(root.Required("brdf"), source / "sim/scenes");
-    const auto captured = CapturedSamples(
-        material, plan,
-        fs::temp_directory_path() / ("brdfrig_model_ceiling." + std::to_string(getpid())));
+    std::vector<reconstruct::PositionSamples> captured;
+    try {
+      captured = CapturedSamples(
+          material, plan,
+          fs::temp_directory_path() / ("brdfrig_model_ceiling." + std::to_string(getpid())), size);
+    } catch (const std::exception& e) {
+      // Not counted in the means: the capture could not be measured at all.
+      std::printf("| %s | capture failed: %s |\n", material.name.c_str(), e.what());
+      std::fflush(stdout);
+      continue;
+    }
+    reconstruct::LadderOptions options;
+    options.prior.prior = priors.For(material);
     const std::vector<reconstruct::PositionSamples> data[kData] = {
         {DenseSamples(*truth)},
         bench::PlanSamples(*truth, scene.rig, plan.positions),
@@ -363,10 +397,10 @@ int main(int argc, char** argv) {
         captured};
     for (int d = 0; d < kData; ++d) {
       std::printf("| %s | %s |", d == 0 ? material.name.c_str() : "", names[d]);
-      for (std::size_t k = 0; k < std::size(kinds); ++k) {
-        const Cell c = Judge(kinds[k], data[d], *truth);
+      for (std::size_t k = 0; k < kinds.size(); ++k) {
+        const Cell c = Judge(kinds[k], data[d], *truth, options);
         std::printf(" %s (%s) |", Fixed(c.sphere_db, 1).c_str(), Fixed(c.worst_db, 1).c_str());
-        sums[d * std::size(kinds) + k] += c.sphere_db;
+        sums[d * kinds.size() + k] += c.sphere_db;
       }
       std::printf("\n");
       std::fflush(stdout);
@@ -376,8 +410,8 @@ int main(int argc, char** argv) {
   }
   for (int d = 0; d < kData; ++d) {
     std::printf("| **mean of %d** | %s |", judged, names[d]);
-    for (std::size_t k = 0; k < std::size(kinds); ++k) {
-      std::printf(" %s |", Fixed(sums[d * std::size(kinds) + k] / std::max(judged, 1), 1).c_str());
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+      std::printf(" %s |", Fixed(sums[d * kinds.size() + k] / std::max(judged, 1), 1).c_str());
     }
     std::printf("\n");
   }

@@ -12,11 +12,28 @@ namespace {
 struct Pixel {
   brdf::Vec3 l, v;
   std::array<double, 3> f;
+  std::array<double, 3> radiance;  // as merged, before the radiometry
   double theta_h, theta_d;
 };
 
-void Emit(const std::vector<const Pixel*>& pixels, std::vector<DirectionSample>* out) {
+// Where the blocks go: the samples, and the pixels of blocks below the noise floor.
+struct BlockOutput {
+  double noise_floor = 0;
+  std::vector<DirectionSample> samples;
+  int pixels_below_noise_floor = 0;
+};
+
+void Emit(const std::vector<const Pixel*>& pixels, BlockOutput* out) {
   if (pixels.empty()) return;
+  std::array<double, 3> radiance{};
+  for (const Pixel* p : pixels) {
+    for (int c = 0; c < 3; ++c) radiance[c] += p->radiance[c];
+  }
+  const double n = static_cast<double>(pixels.size());
+  if (*std::max_element(radiance.begin(), radiance.end()) / n < out->noise_floor) {
+    out->pixels_below_noise_floor += static_cast<int>(pixels.size());
+    return;
+  }
   DirectionSample s;
   s.l.setZero();
   s.v.setZero();
@@ -25,18 +42,17 @@ void Emit(const std::vector<const Pixel*>& pixels, std::vector<DirectionSample>*
     s.v += p->v;
     for (int c = 0; c < 3; ++c) s.f[c] += p->f[c];
   }
-  const double n = static_cast<double>(pixels.size());
   s.l.normalize();
   s.v.normalize();
   for (double& f : s.f) f /= n;
   s.weight = n;
-  out->push_back(s);
+  out->samples.push_back(s);
 }
 
 // Emits the block as one sample, or splits it into four while its angular spans are too wide.
 void Reduce(const std::vector<const Pixel*>& pixels, const std::vector<int>& px,
             const std::vector<int>& py, int x0, int y0, int size,
-            const DirectionSampleOptions& options, std::vector<DirectionSample>* out) {
+            const DirectionSampleOptions& options, BlockOutput* out) {
   if (pixels.empty()) return;
   double h_lo = 1e9, h_hi = -1e9, d_lo = 1e9, d_hi = -1e9;
   for (const Pixel* p : pixels) {
@@ -97,8 +113,8 @@ HalfAngles HalfAnglesOf(const brdf::Vec3& l, const brdf::Vec3& v) {
 }
 
 DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat& valid,
-                                         const PlaneView& view, const geometry::Vec3& light,
-                                         const Radiometry& radiometry,
+                                         double noise_floor, const PlaneView& view,
+                                         const geometry::Vec3& light, const Radiometry& radiometry,
                                          const geometry::TargetGeometry& target,
                                          const SampleOptions& sample_options,
                                          const DirectionSampleOptions& options) {
@@ -115,7 +131,7 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
   const int blocks_y = std::max(0, (box.y1 - box.y0 + b - 1) / b);
 
   // One row of blocks per task: deterministic order whatever the thread count.
-  std::vector<std::vector<DirectionSample>> rows(static_cast<std::size_t>(blocks_y));
+  std::vector<BlockOutput> rows(static_cast<std::size_t>(blocks_y), BlockOutput{noise_floor});
   std::vector<int> used(static_cast<std::size_t>(blocks_y), 0);
   ParallelFor(rows.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r) {
@@ -142,6 +158,7 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
             const cv::Vec3d k = radiometry.ScaleAt(x, y);
             // B,G,R image → R,G,B material channels.
             pixel.f = {value[2] / (k[2] * e), value[1] / (k[1] * e), value[0] / (k[0] * e)};
+            pixel.radiance = {value[2], value[1], value[0]};
             const HalfAngles angles = HalfAnglesOf(pixel.l, pixel.v);
             pixel.theta_h = angles.theta_h;
             pixel.theta_d = angles.theta_d;
@@ -159,8 +176,9 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
   });
   DirectionSamples out;
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    out.samples.insert(out.samples.end(), rows[r].begin(), rows[r].end());
-    out.pixels_used += used[r];
+    out.samples.insert(out.samples.end(), rows[r].samples.begin(), rows[r].samples.end());
+    out.pixels_used += used[r] - rows[r].pixels_below_noise_floor;
+    out.pixels_below_noise_floor += rows[r].pixels_below_noise_floor;
   }
   out.theta_h_min = out.theta_d_min = 1e9;
   out.theta_h_max = out.theta_d_max = 0;

@@ -46,6 +46,7 @@ struct DirectionSamples {
   int position = 0;  // capture position index
   std::vector<DirectionSample> samples;
   int pixels_used = 0;
+  int pixels_below_noise_floor = 0;         // in blocks left out as darker than the noise floor
   double theta_h_min = 0, theta_h_max = 0;  // over the samples (radians)
   double theta_d_min = 0, theta_d_max = 0;
 };
@@ -57,9 +58,13 @@ struct HalfAngles {
 HalfAngles HalfAnglesOf(const brdf::Vec3& l, const brdf::Vec3& v);
 
 // Same sample region, validity and radiometry as ExtractSamples (sample_options.edge_margin).
+// A block whose mean radiance, in its brightest channel, is below `noise_floor`
+// (HdrImage::noise_floor; 0 keeps every block) is left out: what it holds is mostly clipped read
+// noise, which reads as a material several times brighter than a dark one really is. The fits
+// then take that region from the rest (the prior, the compact forms' shape).
 DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat& valid,
-                                         const PlaneView& view, const geometry::Vec3& light,
-                                         const Radiometry& radiometry,
+                                         double noise_floor, const PlaneView& view,
+                                         const geometry::Vec3& light, const Radiometry& radiometry,
                                          const geometry::TargetGeometry& target,
                                          const SampleOptions& sample_options,
                                          const DirectionSampleOptions& options);

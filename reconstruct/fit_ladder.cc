@@ -180,12 +180,18 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
   // slices share (pooled incidence angles, seed_constrained's diffuse floor and energy scale)
   // would otherwise carry the held-out photo into its own prediction, and score the slice
   // rungs better than the rungs that are refitted honestly.
-  const bool validate = options.validate && options.model.empty() && fit_positions.size() >= 2;
-  const int folds = validate ? static_cast<int>(fit_positions.size()) : 0;
+  // A position with no direction sample (all of it below the noise floor) cannot be held out:
+  // there is nothing to score a rung on. It still trains every fold.
+  std::vector<int> held_out;
+  for (int i = 0; i < static_cast<int>(fit_positions.size()); ++i) {
+    if (!fit_positions[i].directions.samples.empty()) held_out.push_back(i);
+  }
+  const bool validate = options.validate && options.model.empty() && held_out.size() >= 2;
+  const int folds = validate ? static_cast<int>(held_out.size()) : 0;
   std::vector<std::vector<const PositionSamples*>> train(folds);
   for (int f = 0; f < folds; ++f) {
-    for (int i = 0; i < folds; ++i) {
-      if (i != f) train[f].push_back(&fit_positions[i]);
+    for (int i = 0; i < static_cast<int>(fit_positions.size()); ++i) {
+      if (i != held_out[f]) train[f].push_back(&fit_positions[i]);
     }
   }
   std::vector<std::vector<FoldFit>> fold_fits(folds, std::vector<FoldFit>(kinds.size()));
@@ -264,13 +270,15 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
       const FoldFit& fit = fold_fits[f][r];
       RungResult& rung = result.rungs[r];
       rung.fold_cpu_seconds += fit.cpu_seconds;
-      rung.fold_positions.push_back(fit_positions[f].index);
-      rung.fold_scores.push_back(
-          fit.material ? Score(*fit.material, fit_positions[f], options.microfacet) : kInf);
+      const PositionSamples& held = fit_positions[held_out[f]];
+      rung.fold_positions.push_back(held.index);
+      rung.fold_scores.push_back(fit.material ? Score(*fit.material, held, options.microfacet)
+                                              : kInf);
     }
   }
   for (RungResult& rung : result.rungs) {
     for (const PositionSamples& v : validation_positions) {
+      if (v.directions.samples.empty()) continue;  // below the noise floor: nothing to score
       rung.validation_scores.push_back(rung.fitted ? Score(rung.material, v, options.microfacet)
                                                    : kInf);
     }

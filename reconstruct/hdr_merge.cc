@@ -58,14 +58,14 @@ struct Decode<float> {
 };
 
 // One fused pass: for every pixel and channel the inverse-variance weighted mean of S_k / t_k
-// over the exposures where S_k is neither clipped nor black.
+// over the exposures where S_k is not clipped (8-bit: nor code 0, a JPEG's crushed black, whose
+// recovered value says nothing).
 template <typename T>
 void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& exposures_s,
                const std::vector<std::size_t>& order, const CodeTable& table,
                const HdrMergeOptions& options, HdrImage* out, std::vector<long>* invalid_per_row) {
   const Decode<T> decode{table};
   const auto saturation = static_cast<float>(options.saturation);
-  const auto black = static_cast<float>(options.black);
   const auto floor = static_cast<float>(options.read_floor);
   const std::size_t n = order.size();
   std::vector<float> times(n), inverse_times(n);
@@ -77,7 +77,7 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
   // Integer codes: every weighted term comes from a table, so the pixel loop has no division
   // and no branch. 8-bit: (exposure, channel, code) → {w·S/t, w}, the hat weight included.
   // 16-bit linear: the value is the same for every channel and exposure, so one shared table
-  // per code holds {S/(S+f), 1/(S+f)} (zero when clipped or black) and the exposure enters as
+  // per code holds {S/(S+f), 1/(S+f)} (zero when clipped) and the exposure enters as
   // w·S/t = t·S/(S+f) and w = t²/(S+f).
   struct Terms {
     float num = 0, den = 0;
@@ -91,7 +91,7 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
       for (int c = 0; c < 3; ++c) {
         for (int code = 0; code < 256; ++code) {
           const float s = decode.Value(static_cast<T>(code), c);
-          if (!(s < saturation) || s <= black) continue;
+          if (!(s < saturation) || code == 0) continue;
           const float w = decode.Weight(static_cast<T>(code)) * times_squared[i] / (s + floor);
           table8[(i * 3 + static_cast<std::size_t>(c)) * 256 + code] = {w * s * inverse_times[i],
                                                                         w};
@@ -102,7 +102,7 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
     table16.resize(65536);
     for (int code = 0; code < 65536; ++code) {
       const float s = decode.Value(static_cast<T>(code), 0);
-      if (!(s < saturation) || s <= black) continue;
+      if (!(s < saturation)) continue;
       table16[static_cast<std::size_t>(code)] = {s / (s + floor), 1.0f / (s + floor)};
     }
   }
@@ -144,7 +144,7 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
                 } else {
                   // Float (EXR): NaN/Inf fail both comparisons and drop out.
                   const float s = rows[i][j];
-                  const bool usable = s < saturation && s > black;
+                  const bool usable = s < saturation && s >= 0;
                   const float w = usable ? times_squared[i] / (s + floor) : 0.0f;
                   num += w * (usable ? s : 0.0f) * inverse_times[i];
                   den += w;
@@ -166,7 +166,8 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
                 clipped_everywhere = true;
                 dst[j] = std::max(shortest, 0.0f) * inverse_times[0];
               } else {
-                // Black in every exposure: as dark as the longest exposure can tell.
+                // No usable value (8-bit code 0 or a negative float in every exposure): as dark
+                // as the longest exposure can tell.
                 dst[j] = std::max(decode.Value(rows[n - 1][j], c), 0.0f) * inverse_times[n - 1];
               }
             }
@@ -182,10 +183,11 @@ void MergeRows(const std::vector<cv::Mat>& images, const std::vector<double>& ex
 }  // namespace
 
 void HdrMergeOptions::Validate() const {
-  if (!(saturation > black && saturation <= 1)) {
-    throw OptionsError("HdrMergeOptions: need 0 <= black < saturation <= 1");
-  }
+  CheckOption(saturation > 0 && saturation <= 1, "HdrMergeOptions.saturation", saturation,
+              "in (0, 1]");
   CheckOption(read_floor > 0, "HdrMergeOptions.read_floor", read_floor, "> 0");
+  CheckOption(noise_floor >= 0 && noise_floor < saturation, "HdrMergeOptions.noise_floor",
+              noise_floor, "in [0, saturation)");
 }
 
 cv::Mat ReadPhoto(const std::string& path) {
@@ -277,6 +279,7 @@ void MergeBracketInto(const std::vector<cv::Mat>& images, const std::vector<doub
   }
   const long invalid = std::accumulate(invalid_per_row.begin(), invalid_per_row.end(), 0L);
   out.invalid_fraction = static_cast<double>(invalid) / (static_cast<double>(size.area()));
+  out.noise_floor = options.noise_floor / exposures_s[order.back()];
 }
 
 }  // namespace brdfrig::reconstruct

@@ -211,14 +211,23 @@ MeasuredPosition MeasurePosition(const CapturePosition& position,
   }
   {
     StageTimer timer(state->stage_seconds, state->stage_cpu_seconds, "samples", CpuClock::kThread);
-    data.directions = ExtractDirectionSamples(hdr.radiance, hdr.valid, view, report.light.position,
-                                              report.radiometry, nominal.target, options.samples,
-                                              options.directions);
+    data.directions = ExtractDirectionSamples(hdr.radiance, hdr.valid, hdr.noise_floor, view,
+                                              report.light.position, report.radiometry,
+                                              nominal.target, options.samples, options.directions);
     data.directions.position = position.index;
   }
   report.theta_in = data.samples.theta_in;
   report.samples = data.samples.pixels_used;
   report.direction_samples = static_cast<int>(data.directions.samples.size());
+  const int region = data.directions.pixels_used + data.directions.pixels_below_noise_floor;
+  report.below_noise_floor_fraction =
+      region > 0 ? static_cast<double>(data.directions.pixels_below_noise_floor) / region : 0;
+  if (report.below_noise_floor_fraction > 0.5) {
+    report.warnings.push_back(
+        Fixed(100 * report.below_noise_floor_fraction, 0) +
+        " % of the sample is darker than the sensor's noise floor even in the longest "
+        "exposure: that part is not measured (a longer exposure would measure it)");
+  }
   report.used = true;
   return data;
 }

@@ -41,6 +41,9 @@ struct PositionReport {
   Radiometry radiometry;
   int samples = 0;
   int direction_samples = 0;  // after block averaging
+  // Sample-region pixels darker than the sensor's noise floor in the longest exposure
+  // (HdrImage::noise_floor): left out of the direction samples, so not measured.
+  double below_noise_floor_fraction = 0;
   std::vector<std::string> warnings;
 };
 

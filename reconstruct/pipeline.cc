@@ -99,7 +99,7 @@ nlohmann::json ReconstructOptions::ResultKey() const {
           {"validate", validate},
           {"use_positions", use_positions},
           {"validation_positions", validation_positions},
-          {"hdr", {hdr.saturation, hdr.black, hdr.read_floor}},
+          {"hdr", {hdr.saturation, hdr.read_floor, hdr.noise_floor}},
           {"target",
            {target.search_band, target.corner_skip, target.profile_step_px, target.min_log_step,
             target.min_edge_fraction, target.use_paper_outline, target.lines_per_edge,
@@ -316,6 +316,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
       p["paper_spread"] = r.radiometry.relative_spread;
       p["clipped_fraction"] = r.invalid_fraction;
       p["direction_samples"] = r.direction_samples;
+      p["below_noise_floor_fraction"] = r.below_noise_floor_fraction;
     }
     positions_json.push_back(p);
   }

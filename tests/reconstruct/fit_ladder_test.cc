@@ -216,5 +216,23 @@ TEST(FitLadderTest, EveryFoldIsARefitWithoutItsHeldOutPosition) {
   }
 }
 
+// A photo whose every block was darker than the sensor's noise floor has no direction sample.
+// It cannot be held out (there is nothing to score on), so the folds are the other positions,
+// every score finite, and the choice is made as usual.
+TEST(FitLadderTest, APositionWithNoDirectionSampleIsNotAFold) {
+  const brdf::MicrofacetModel truth(GgxTruth());
+  std::vector<PositionSamples> positions = Positions(truth, DesignedPatches());
+  positions[4].directions.samples.clear();
+  const LadderResult ladder = FitLadder(positions, {}, {});
+  ASSERT_GE(ladder.chosen, 0);
+  for (const RungResult& rung : ladder.rungs) {
+    if (!rung.fitted) continue;
+    EXPECT_EQ(rung.fold_positions, (std::vector<int>{0, 1, 2, 3, 5}))
+        << brdf::ModelKindName(rung.kind);
+    EXPECT_TRUE(std::isfinite(rung.score)) << brdf::ModelKindName(rung.kind);
+  }
+  EXPECT_NE(ladder.rungs[ladder.chosen].kind, brdf::ModelKind::kSeed);
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct
