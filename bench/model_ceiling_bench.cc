@@ -22,6 +22,7 @@
 //
 //   bench_model_ceiling [--set analytic|measured|all] [--materials a,b,...] [--positions N]
 //                       [--rungs ggx,beckmann,microfacet,prior] [--size WxH] [--effects YAML]
+//                       [--exposures t1,t2,t3]
 //                       [--choice [--validation N]]
 // --validation N adds N validation positions (coverage::DesignOptions::validation) to the plan
 // of --choice and compares the folds alone, the validation photos alone and both (the product).
@@ -80,6 +81,7 @@ reconstruct::PositionSamples DenseSamples(const brdf::Brdf& truth) {
 struct CaptureSize {
   int width = 400, height = 300;
   std::string effects;
+  std::vector<double> exposures;  // seconds (empty: the scene's)
 };
 
 std::vector<reconstruct::PositionSamples> CapturedSamples(const jobs::StudyMaterial& material,
@@ -101,6 +103,7 @@ std::vector<reconstruct::PositionSamples> CapturedSamples(const jobs::StudyMater
   simulate.output_dir = work;
   simulate.write_truth = false;
   simulate.positions = plan.positions;
+  simulate.exposures = size.exposures;
   sim::Simulate(simulate);
   reconstruct::CaptureSet capture = reconstruct::LoadCapture(work);
   capture.nominal = scene->rig;
@@ -294,6 +297,8 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[i], "--size") == 0 && more &&
                std::sscanf(argv[i + 1], "%dx%d", &size.width, &size.height) == 2) {
       ++i;
+    } else if (std::strcmp(argv[i], "--exposures") == 0 && more) {
+      for (const std::string& t : SplitList(argv[++i])) size.exposures.push_back(std::stod(t));
     } else if (std::strcmp(argv[i], "--effects") == 0 && more) {
       size.effects = argv[++i];
     } else if (std::strcmp(argv[i], "--choice") == 0) {
@@ -304,6 +309,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_model_ceiling [--set analytic|measured|all] "
                    "[--materials a,b] [--positions N] [--rungs a,b] [--size WxH] [--effects YAML] "
+                   "[--exposures t1,t2] "
                    "[--choice [--validation N]]\n");
       return 2;
     }
