@@ -322,6 +322,9 @@ void PhotoCountRungs(const HemisphereArgs& a) {
   options.every_rung = true;
   options.brdf_only = true;
   options.work_dir = std::filesystem::temp_directory_path() / "brdfrig_photo_count_study";
+  // Each measured material judged by the prior built without it, as in the hemisphere study.
+  jobs::LeaveOneOutPriors priors;
+  options.prior_for = [&](const jobs::StudyMaterial& m) { return priors.For(m); };
   std::vector<std::string> kinds;
   std::vector<evaluate::Series> series;
   std::ostringstream table, detail;
@@ -396,7 +399,8 @@ void PhotoCountRungs(const HemisphereArgs& a) {
       ". Each count: coverage::DesignPlan for the default rig with that many positions, one "
       "simulated capture per material (" +
       std::to_string(a.width) + "x" + std::to_string(a.height) +
-      " px, 3 exposures, 14-bit sensor with noise), every rung fitted, each judged by the sphere "
+      " px, 3 exposures, 14-bit sensor with noise), every rung fitted (the prior rung of a "
+      "measured material with the prior built without it), each judged by the sphere "
       "test (lights 0°, 30°, 60°, 80°). Cells: mean sphere PSNR over materials (dB), worst "
       "material in brackets.\n\n" +
       table.str() + "\nPer material (sphere mean dB per rung; (c): validation's choice):\n\n" +
