@@ -5,8 +5,8 @@
 // noise grows with S, read noise does not), skipping clipped (S >= saturation) values. A dark
 // value, even 0, is kept: it is the longest exposure's measurement of a dark surface, and
 // dropping it would leave the pixel to a shorter exposure's noise, larger by the exposure
-// ratio and, once the zeros are gone, all positive (a black sample read several times too bright). Non-linear
-// inputs (8-bit JPEG): the camera response is recovered once (Debevec–Malik, OpenCV's
+// ratio and, once the zeros are gone, all positive (a black sample read several times too bright).
+// Non-linear inputs (8-bit JPEG): the camera response is recovered once (Debevec–Malik, OpenCV's
 // CalibrateDebevec), then the same merge runs on the linearized values with a hat weight on the
 // code value. A pixel clipped in every exposure is invalid: it keeps the lower bound S_min / t_min
 // as its value and is flagged, never guessed. One fused pass over the inputs, rows split across
