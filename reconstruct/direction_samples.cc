@@ -23,17 +23,30 @@ struct BlockOutput {
   int pixels_below_noise_floor = 0;
 };
 
-void Emit(const std::vector<const Pixel*>& pixels, BlockOutput* out) {
-  if (pixels.empty()) return;
+// The noise floor is judged on blocks of at least this many pixels (a small block inherits the
+// verdict of the smallest enclosing block that has them). A block of a few pixels has a mean
+// as noisy as the floor is high: judged on its own, its upward fluctuations would be kept and
+// its downward ones dropped, which reads a dark region brighter than it is, the bias the floor
+// exists to avoid. 64 pixels average the read noise to an eighth.
+constexpr std::size_t kFloorPixels = 64;
+
+// Whether the mean radiance of `pixels`, in its brightest channel, is below the floor.
+bool BelowNoiseFloor(const std::vector<const Pixel*>& pixels, double noise_floor) {
   std::array<double, 3> radiance{};
   for (const Pixel* p : pixels) {
     for (int c = 0; c < 3; ++c) radiance[c] += p->radiance[c];
   }
-  const double n = static_cast<double>(pixels.size());
-  if (*std::max_element(radiance.begin(), radiance.end()) / n < out->noise_floor) {
+  return *std::max_element(radiance.begin(), radiance.end()) / static_cast<double>(pixels.size()) <
+         noise_floor;
+}
+
+void Emit(const std::vector<const Pixel*>& pixels, bool below_noise_floor, BlockOutput* out) {
+  if (pixels.empty()) return;
+  if (below_noise_floor) {
     out->pixels_below_noise_floor += static_cast<int>(pixels.size());
     return;
   }
+  const double n = static_cast<double>(pixels.size());
   DirectionSample s;
   s.l.setZero();
   s.v.setZero();
@@ -50,10 +63,14 @@ void Emit(const std::vector<const Pixel*>& pixels, BlockOutput* out) {
 }
 
 // Emits the block as one sample, or splits it into four while its angular spans are too wide.
+// `below_noise_floor`: the verdict of the enclosing block (at the root: of the block itself).
 void Reduce(const std::vector<const Pixel*>& pixels, const std::vector<int>& px,
             const std::vector<int>& py, int x0, int y0, int size,
-            const DirectionSampleOptions& options, BlockOutput* out) {
+            const DirectionSampleOptions& options, bool below_noise_floor, BlockOutput* out) {
   if (pixels.empty()) return;
+  if (pixels.size() >= kFloorPixels) {
+    below_noise_floor = BelowNoiseFloor(pixels, out->noise_floor);
+  }
   double h_lo = 1e9, h_hi = -1e9, d_lo = 1e9, d_hi = -1e9;
   for (const Pixel* p : pixels) {
     h_lo = std::min(h_lo, p->theta_h);
@@ -65,7 +82,7 @@ void Reduce(const std::vector<const Pixel*>& pixels, const std::vector<int>& px,
       h_hi - h_lo <= std::max(options.min_theta_h_span, options.relative_theta_h_span * h_lo) &&
       d_hi - d_lo <= options.max_theta_d_span;
   if (narrow || size <= 1) {
-    Emit(pixels, out);
+    Emit(pixels, below_noise_floor, out);
     return;
   }
   const int half = size / 2;
@@ -80,7 +97,7 @@ void Reduce(const std::vector<const Pixel*>& pixels, const std::vector<int>& px,
           sy.push_back(py[i]);
         }
       }
-      Reduce(sub, sx, sy, x0 + qx * half, y0 + qy * half, half, options, out);
+      Reduce(sub, sx, sy, x0 + qx * half, y0 + qy * half, half, options, below_noise_floor, out);
     }
   }
 }
@@ -170,7 +187,9 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
         std::vector<const Pixel*> pointers;
         for (const Pixel& p : pixels) pointers.push_back(&p);
         used[r] += static_cast<int>(pixels.size());
-        Reduce(pointers, px, py, x0, y0, b, options, &rows[r]);
+        if (pointers.empty()) continue;
+        Reduce(pointers, px, py, x0, y0, b, options, BelowNoiseFloor(pointers, noise_floor),
+               &rows[r]);
       }
     }
   });

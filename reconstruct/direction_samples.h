@@ -61,7 +61,9 @@ HalfAngles HalfAnglesOf(const brdf::Vec3& l, const brdf::Vec3& v);
 // A block whose mean radiance, in its brightest channel, is below `noise_floor`
 // (HdrImage::noise_floor; 0 keeps every block) is left out: what it holds is mostly clipped read
 // noise, which reads as a material several times brighter than a dark one really is. The fits
-// then take that region from the rest (the prior, the compact forms' shape).
+// then take that region from the rest (the prior, the compact forms' shape). The floor is
+// judged on blocks of at least 64 pixels (smaller ones take their enclosing block's verdict),
+// so that it does not select a small block's upward noise.
 DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat& valid,
                                          double noise_floor, const PlaneView& view,
                                          const geometry::Vec3& light, const Radiometry& radiometry,

@@ -64,12 +64,34 @@ void VerifyRecordedHashes(const CapturePosition& position) {
   }
 }
 
-// Why a used position's result is degraded: its photos held NaN or infinite pixels (a corrupt
-// or badly converted float image), masked as invalid; where they lie near the highlight they
-// cost the pose and light estimates accuracy nothing else reports.
+// Why a used position's result is degraded ("" when it is not): its photos held NaN or
+// infinite pixels (a corrupt or badly converted float image), masked as invalid, which near
+// the highlight cost the pose and light estimates accuracy nothing else reports; or its whole
+// sample was darker than the sensor's noise floor even in the longest exposure, so it measured
+// the material nowhere (its pose and paper still count, its BRDF samples do not).
 std::string DegradedReason(const PositionReport& report) {
-  return std::to_string(report.non_finite_pixels) +
-         " NaN or infinite pixels in its photos (masked as invalid)";
+  std::string reason;
+  if (report.non_finite_pixels > 0) {
+    reason = std::to_string(report.non_finite_pixels) +
+             " NaN or infinite pixels in its photos (masked as invalid)";
+  }
+  if (report.direction_samples == 0 && report.below_noise_floor_fraction > 0) {
+    if (!reason.empty()) reason += "; ";
+    reason +=
+        "its whole sample is darker than the sensor's noise floor in the longest exposure "
+        "(nothing measured; a longer exposure would measure it)";
+  }
+  return reason;
+}
+
+// The longest exposure of any position's bracket (seconds), for the message that asks for a
+// longer one.
+double LongestExposure(const CaptureSet& capture) {
+  double longest = 0;
+  for (const CapturePosition& p : capture.positions) {
+    for (const BracketFrame& f : p.frames) longest = std::max(longest, f.exposure_s);
+  }
+  return longest;
 }
 
 }  // namespace
@@ -268,6 +290,18 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     for (const PositionReport& r : result.positions) reasons += "\n  " + r.skipped_reason;
     throw Error(capture.name + ": no position could be reconstructed:" + reasons);
   }
+  // A sample too dark for the bracket everywhere: every rung would fit read noise.
+  if (std::all_of(fit_positions.begin(), fit_positions.end(),
+                  [](const PositionSamples& p) { return p.directions.samples.empty(); }) &&
+      std::any_of(result.positions.begin(), result.positions.end(),
+                  [](const PositionReport& r) { return r.below_noise_floor_fraction > 0; })) {
+    throw Error(capture.name + ": the sample is darker than the sensor's noise floor (" +
+                Fixed(options.hdr.noise_floor * 100, 2) +
+                " % of full scale) at every position, even in the longest exposure (" +
+                Fixed(LongestExposure(capture), 4) +
+                " s): nothing was measured. Lengthen the bracket (the plan's `exposures:`, or "
+                "auto-bracketing) until the sample reads above the floor.");
+  }
 
   // Stages 2–3: every rung of the ladder, scored on what it was not fitted to.
   LadderOptions ladder_options;
@@ -305,7 +339,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
     } else {
       if (!r.warnings.empty()) p["warnings"] = r.warnings;
       p["non_finite_pixels"] = r.non_finite_pixels;
-      if (r.non_finite_pixels > 0) p["degraded"] = DegradedReason(r);
+      if (const std::string reason = DegradedReason(r); !reason.empty()) p["degraded"] = reason;
       p["pose_from"] = r.pose_from;
       p["pose_points"] = r.pose_points;
       p["reprojection_rms_px"] = r.reprojection_rms_px;
@@ -360,9 +394,8 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
 std::vector<std::string> ReconstructionResult::Degraded() const {
   std::vector<std::string> degraded;
   for (const PositionReport& p : positions) {
-    if (p.used && p.non_finite_pixels > 0) {
-      degraded.push_back(PositionName(p.index) + ": " + DegradedReason(p));
-    }
+    const std::string reason = p.used ? DegradedReason(p) : "";
+    if (!reason.empty()) degraded.push_back(PositionName(p.index) + ": " + reason);
   }
   return degraded;
 }

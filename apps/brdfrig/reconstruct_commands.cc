@@ -30,7 +30,8 @@ void AddReconstructFlags(CLI::App* cmd, ReconstructFlags& flags) {
                   "validation)");
   cmd->add_flag("--strict", flags.strict,
                 "Fail a capture (write nothing for it) when any of its positions would be "
-                "dropped or degraded (NaN/Inf pixels); exit status 1 instead of 3");
+                "dropped or degraded (NaN/Inf pixels, or a sample below the noise floor); exit "
+                "status 1 instead of 3");
   cmd->add_flag("--no-light-refine", flags.no_light_refine,
                 "Keep the light from the highlight's centroid (no joint refinement)");
 }

@@ -85,6 +85,55 @@ TEST(HardCases, HighlightSaturatedInEveryExposureIsFlagged) {
   }
 }
 
+TEST(HardCases, ASampleBelowTheNoiseFloorEverywhereIsAnErrorNamingTheFloorAndTheBracket) {
+  SceneSpec spec = HardCase();
+  spec.effects = kRealistic;
+  // Four orders of magnitude darker than the paper: read noise even at 1/15 s.
+  spec.brdf = "{model: lambert, albedo: [0.00005, 0.00005, 0.00005]}";
+  spec.positions = "[{camera_arm: 20, light_arm: -20}, {camera_arm: 40, light_arm: -40}]";
+  const CaptureSet capture = SimulateCapture(TempDir("below_floor"), spec);
+  for (const ReconstructOptions& options : {testing::SeedOnly(), ReconstructOptions{}}) {
+    try {
+      const ReconstructionResult r = Reconstruct(capture, options);
+      std::string report;
+      for (const PositionReport& p : r.positions) {
+        report += " p" + std::to_string(p.index) + ": " + std::to_string(p.direction_samples) +
+                  " direction samples, " + std::to_string(p.below_noise_floor_fraction) +
+                  " below the floor;";
+      }
+      FAIL() << "a capture that measured nothing was reconstructed (" << options.model
+             << "):" << report;
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("noise floor (0.10 % of full scale) at every position"),
+                std::string::npos)
+          << what;
+      EXPECT_NE(what.find("longest exposure (0.0667 s)"), std::string::npos) << what;
+      EXPECT_NE(what.find("Lengthen the bracket"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(HardCases, APositionWhoseWholeSampleIsBelowTheNoiseFloorIsDegraded) {
+  ReconstructionResult result;
+  PositionReport dark;
+  dark.index = 4;
+  dark.used = true;
+  dark.direction_samples = 0;
+  dark.below_noise_floor_fraction = 1;
+  PositionReport partly = dark;  // partly below the floor: measured where it is not
+  partly.index = 5;
+  partly.direction_samples = 30;
+  partly.below_noise_floor_fraction = 0.7;
+  result.positions = {dark, partly};
+  ASSERT_EQ(result.Degraded().size(), 1u);
+  EXPECT_EQ(result.Degraded()[0].rfind("p04: its whole sample is darker than the sensor's noise "
+                                       "floor",
+                                       0),
+            0u)
+      << result.Degraded()[0];
+}
+
 TEST(HardCases, HighlightOutsideTheCutoutFallsBackToTheNominalLight) {
   SceneSpec spec = HardCase();
   spec.brdf = kGgx;
