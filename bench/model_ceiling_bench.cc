@@ -42,6 +42,7 @@
 #include "common/format.h"
 #include "common/yaml_reader.h"
 #include "coverage/designer.h"
+#include "evaluate/brdf_figures.h"
 #include "evaluate/sphere_test.h"
 #include "jobs/material_study.h"
 #include "jobs/study.h"
@@ -246,6 +247,7 @@ std::vector<double> CompareChoices(const jobs::StudyMaterial& material, const jo
 
 struct Cell {
   double sphere_db = NAN, worst_db = NAN;
+  double albedo_error = NAN;  // evaluate::WorstAlbedoError, 0–75°, signed
 };
 
 Cell Judge(brdf::ModelKind kind, const std::vector<reconstruct::PositionSamples>& positions,
@@ -255,7 +257,7 @@ Cell Judge(brdf::ModelKind kind, const std::vector<reconstruct::PositionSamples>
   try {
     const brdf::Material m = reconstruct::FitRung(kind, all, options, false);
     const evaluate::SphereTestResult r = evaluate::SphereTest(truth, *m.Model());
-    return {r.mean_psnr_db, r.worst_psnr_db};
+    return {r.mean_psnr_db, r.worst_psnr_db, evaluate::WorstAlbedoError(truth, *m.Model())};
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: %s\n", brdf::ModelKindName(kind), e.what());
     return {};
@@ -364,7 +366,8 @@ int main(int argc, char** argv) {
   for (const std::string& name : rungs) kinds.push_back(brdf::ParseModelKind(name));
   std::printf(
       "Sphere test mean (worst light) in dB of each rung fitted to noise-free truth "
-      "samples.\nPlan: %s; capture %dx%d px\n\n| material | data |",
+      "samples, and its directional-albedo error at 0-75°, the largest over channels and "
+      "angles with its sign (> 0: too bright).\nPlan: %s; capture %dx%d px\n\n| material | data |",
       plan.name.c_str(), size.width, size.height);
   for (brdf::ModelKind k : kinds) std::printf(" %s |", brdf::ModelKindName(k));
   std::printf("\n|---|---|");
@@ -374,6 +377,7 @@ int main(int argc, char** argv) {
   constexpr int kData = 4;
   const char* names[kData] = {"dense", "designed", "geometry", "captured"};
   std::vector<double> sums(kData * kinds.size(), 0.0);
+  std::vector<int> albedo_within(kData * kinds.size(), 0);
   std::vector<std::string> biases;
   int judged = 0;
   const auto start = std::chrono::steady_clock::now();
@@ -405,8 +409,10 @@ int main(int argc, char** argv) {
       std::printf("| %s | %s |", d == 0 ? material.name.c_str() : "", names[d]);
       for (std::size_t k = 0; k < kinds.size(); ++k) {
         const Cell c = Judge(kinds[k], data[d], *truth, options);
-        std::printf(" %s (%s) |", Fixed(c.sphere_db, 1).c_str(), Fixed(c.worst_db, 1).c_str());
+        std::printf(" %s (%s) %s%% |", Fixed(c.sphere_db, 1).c_str(), Fixed(c.worst_db, 1).c_str(),
+                    Fixed(100 * c.albedo_error, 0).c_str());
         sums[d * kinds.size() + k] += c.sphere_db;
+        albedo_within[d * kinds.size() + k] += std::abs(c.albedo_error) <= 0.1;
       }
       std::printf("\n");
       std::fflush(stdout);
@@ -417,7 +423,9 @@ int main(int argc, char** argv) {
   for (int d = 0; d < kData; ++d) {
     std::printf("| **mean of %d** | %s |", judged, names[d]);
     for (std::size_t k = 0; k < kinds.size(); ++k) {
-      std::printf(" %s |", Fixed(sums[d * kinds.size() + k] / std::max(judged, 1), 1).c_str());
+      std::printf(" %s, albedo within 10 %%: %d |",
+                  Fixed(sums[d * kinds.size() + k] / std::max(judged, 1), 1).c_str(),
+                  albedo_within[d * kinds.size() + k]);
     }
     std::printf("\n");
   }

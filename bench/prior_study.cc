@@ -14,7 +14,9 @@
 // about the normal), each with its leave-one-material-out figures.
 //
 // Prints per material the sphere PSNR of the prior, ggx and microfacet rungs, the worst
-// albedo ratio over 0-75°, and a summary per position count.
+// albedo error over 0-75° with its sign (evaluate::WorstAlbedoError), what the table
+// representation and the prior's components allow with dense data, and a summary per position
+// count.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,12 +26,13 @@
 #include <vector>
 
 #include "bench/plan_samples.h"
-#include "brdf/metrics.h"
 #include "brdf/nbrdf.h"
 #include "brdf/nbrdf_library.h"
+#include "brdf/rusinkiewicz_table.h"
 #include "common/angles.h"
 #include "common/yaml_reader.h"
 #include "coverage/designer.h"
+#include "evaluate/brdf_figures.h"
 #include "evaluate/sphere_test.h"
 #include "prior/build_prior.h"
 #include "reconstruct/fit_ladder.h"
@@ -52,24 +55,16 @@ std::vector<std::string> SplitList(const std::string& s) {
 
 struct Judged {
   double sphere_db = NAN;
-  double albedo_worst = NAN;  // max over 0,30,60,75° and channels of |ratio − 1|
+  double albedo_signed = NAN;  // evaluate::WorstAlbedoError over 0–75° (> 0: too bright)
+  double albedo_worst = NAN;   // its magnitude
   bool outside = false;
 };
 
 Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
   Judged j;
   j.sphere_db = evaluate::SphereTest(truth, fit).mean_psnr_db;
-  brdf::MetricOptions m;
-  m.theta_steps = 96;
-  m.phi_steps = 128;
-  j.albedo_worst = 0;
-  for (const double deg : {0.0, 30.0, 60.0, 75.0}) {
-    const brdf::Rgb a = brdf::DirectionalAlbedo(truth, Radians(deg), m);
-    const brdf::Rgb b = brdf::DirectionalAlbedo(fit, Radians(deg), m);
-    for (int c = 0; c < 3; ++c) {
-      if (a[c] > 1e-4) j.albedo_worst = std::max(j.albedo_worst, std::abs(b[c] / a[c] - 1));
-    }
-  }
+  j.albedo_signed = evaluate::WorstAlbedoError(truth, fit);
+  j.albedo_worst = std::abs(j.albedo_signed);
   return j;
 }
 
@@ -158,8 +153,9 @@ int main(int argc, char** argv) {
       std::vector<geometry::AxisPositions> plan = designed.Positions();
       std::printf("\n%s, %d positions: design RMS per node %.3f expected, %.3f leave-one-out\n",
                   variant.name.c_str(), count, designed.expected_rms, designed.leave_one_out_rms);
-      std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s %8s\n", count, "material", "prior",
-                  "ggx", "micro", "albedo", "misfit", "outside");
+      std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s %8s %7s %7s %7s %7s\n", count,
+                  "material", "prior", "ggx", "micro", "albedo", "misfit", "outside", "table",
+                  "albedo", "project", "albedo");
       std::map<std::string, std::vector<double>> sphere;
       std::vector<double> albedo;
       int outside = 0;
@@ -185,6 +181,17 @@ int main(int argc, char** argv) {
         const brdf::Material pm =
             reconstruct::FitRung(brdf::ModelKind::kPrior, all, options, false);
         const Judged jp = Judge(truth, *pm.Model());
+        // What the representation allows at all: the true table, and its projection on the
+        // left-out prior's components (dense data, no regularisation).
+        brdf::TableValues table = brdf::TabulateBrdf(truth, loo.grid);
+        const Judged jt = Judge(truth, brdf::RusinkiewiczTable(loo.grid, table));
+        for (std::vector<double>& q : table) {
+          Eigen::Map<Eigen::VectorXd> values(q.data(), static_cast<Eigen::Index>(q.size()));
+          const Eigen::VectorXd centred = values - loo.mean;
+          values = loo.mean + loo.components * (loo.components.transpose() * centred);
+          for (double& v : q) v = std::clamp(v, std::log(loo.grid.epsilon), 80.0);
+        }
+        const Judged jj = Judge(truth, brdf::RusinkiewiczTable(loo.grid, table));
         double ggx = NAN, micro = NAN;
         if (compact) {
           try {
@@ -204,8 +211,10 @@ int main(int argc, char** argv) {
         sphere["ggx"].push_back(ggx);
         sphere["microfacet"].push_back(micro);
         albedo.push_back(jp.albedo_worst);
-        std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8.3f %8s\n", name.c_str(), jp.sphere_db, ggx,
-                    micro, 100 * jp.albedo_worst, pm.fit.value("misfit", NAN), out ? "yes" : "");
+        std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8.3f %8s %7.2f %6.1f%% %7.2f %6.1f%%\n",
+                    name.c_str(), jp.sphere_db, ggx, micro, 100 * jp.albedo_signed,
+                    pm.fit.value("misfit", NAN), out ? "yes" : "", jt.sphere_db,
+                    100 * jt.albedo_signed, jj.sphere_db, 100 * jj.albedo_signed);
         std::fflush(stdout);
       }
       for (const auto& [rung, values] : sphere) {

@@ -50,4 +50,19 @@ BrdfFigures CompareBrdf(const brdf::Brdf& truth, const brdf::Brdf& fitted,
   return figures;
 }
 
+double WorstAlbedoError(const brdf::Brdf& truth, const brdf::Brdf& fitted,
+                        const std::vector<double>& angles_deg) {
+  double worst = 0;
+  for (const double angle : angles_deg) {
+    const brdf::Rgb a = brdf::DirectionalAlbedo(truth, angle * M_PI / 180);
+    const brdf::Rgb b = brdf::DirectionalAlbedo(fitted, angle * M_PI / 180);
+    for (int c = 0; c < 3; ++c) {
+      const double error = (b[c] - a[c]) / std::max(a[c], 1e-6);
+      if (!std::isfinite(error)) return INFINITY;
+      if (std::abs(error) > std::abs(worst)) worst = error;
+    }
+  }
+  return worst;
+}
+
 }  // namespace brdfrig::evaluate

@@ -35,4 +35,10 @@ struct BrdfFigures {
 BrdfFigures CompareBrdf(const brdf::Brdf& truth, const brdf::Brdf& fitted,
                         const BrdfFiguresOptions& options = {});
 
+// The directional-albedo error that decides "albedo within x %" (docs/results.md): over the
+// channels and `angles_deg`, the (fitted − truth) / truth largest in magnitude, with its sign
+// (> 0: the fit reflects too much).
+double WorstAlbedoError(const brdf::Brdf& truth, const brdf::Brdf& fitted,
+                        const std::vector<double>& angles_deg = {0, 15, 30, 45, 60, 75});
+
 }  // namespace brdfrig::evaluate

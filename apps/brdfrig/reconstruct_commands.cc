@@ -32,14 +32,16 @@ void AddReconstructFlags(CLI::App* cmd, ReconstructFlags& flags) {
                 "Fail a capture (write nothing for it) when any of its positions would be "
                 "dropped or degraded (NaN/Inf pixels, or a sample below the noise floor); exit "
                 "status 1 instead of 3");
-  cmd->add_flag("--no-light-refine", flags.no_light_refine,
-                "Keep the light from the highlight's centroid (no joint refinement)");
+  cmd->add_flag("--light-refine", flags.light_refine,
+                "Refine the highlight's light jointly with a lobe symmetric about the mirror "
+                "direction (off by default: it biases the light under grazing light, "
+                "reconstruct/light_refine.h)");
 }
 
 void ApplyReconstructFlags(const ReconstructFlags& flags, reconstruct::BatchOptions& options) {
   options.force = flags.force;
   options.reconstruct.samples.bin_width = Radians(flags.bin_width_deg);
-  options.reconstruct.light_refine.enabled = !flags.no_light_refine;
+  options.reconstruct.light_refine.enabled = flags.light_refine;
   options.reconstruct.model = flags.model;
   options.reconstruct.strict = flags.strict;
 }

@@ -14,7 +14,7 @@ namespace brdfrig::apps {
 struct ReconstructFlags {
   bool force = false;
   double bin_width_deg = 0.02;
-  bool no_light_refine = false;
+  bool light_refine = false;
   bool strict = false;
   std::string model;
 };

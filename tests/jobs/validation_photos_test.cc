@@ -58,11 +58,17 @@ TEST(ValidationPhotosTest, TheTruthPredictsItsPhotosAndAWrongMaterialDoesNot) {
   const brdf::Material truth = FlatSliceTruth();
   const reconstruct::CaptureSet capture = SimulateCapture(
       fs::temp_directory_path() / "brdfrig_validation_photos", SmallSpec(true), &truth);
-  const auto truth_results = CompareValidationPhotos(capture, *truth.Model(), {});
+  // The light refined with the lobe: the truth is a slice model, symmetric about the mirror
+  // direction, the refinement's premise (reconstruct/light_refine.h). The highlight's centroid
+  // alone is off by tenths of a degree here, which costs the off-highlight photo's prediction
+  // about half a percent of relative RMSE.
+  ValidationPhotoOptions options;
+  options.measure.light_refine.enabled = true;
+  const auto truth_results = CompareValidationPhotos(capture, *truth.Model(), options);
   ASSERT_EQ(truth_results.size(), 2u);
   EXPECT_EQ(truth_results[0].position, 2);
   EXPECT_EQ(truth_results[1].position, 3);
-  const auto wrong_results = CompareValidationPhotos(capture, *WrongMaterial().Model(), {});
+  const auto wrong_results = CompareValidationPhotos(capture, *WrongMaterial().Model(), options);
   ASSERT_EQ(wrong_results.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
     const auto& t = truth_results[i];
