@@ -11,8 +11,8 @@
 // study's designed plan (bench_model_ceiling, captured row, the light's true place = nominal):
 // at 1600×1200 the highlight alone put the light 0.06–0.17° from its true place, the refinement
 // 0.5–2.6° (the most at 70° incidence, where the lobe is least symmetric), reading f there
-// 10–30 % low; on 16 measured materials at 400×300 the prior rung lost 0.2 dB and the worst
-// albedo errors doubled (−16 % → −55 %), on the 9 analytic ones ggx lost 2.9 dB and
+// 9–30 % low; on 16 measured materials at 400×300 the prior rung lost 0.2 dB and two albedo
+// errors grew from −14…−16 % to −52…−55 %; on the 9 analytic ones ggx lost 2.9 dB and
 // microfacet 1.8 dB. Where the sample is a slice model (the seed's own lobe, as in the tests
 // of the measuring stages) the premise holds and the refinement is exact: opt in there.
 #pragma once
