@@ -1,6 +1,7 @@
 #include "sim/simulate.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -116,6 +117,7 @@ std::string SimulateSummary::ToString() const {
       << " s (the rig would take " << virtual_time_s << " s";
   if (recovered_faults > 0) out << ", " << recovered_faults << " faults recovered";
   out << "); photos in " << photos_dir.string() << ", truth in " << truth_dir.string();
+  for (const std::string& w : warnings) out << "\nwarning: " << w;
   return out.str();
 }
 
@@ -183,6 +185,12 @@ SimulateSummary Simulate(const SimulateOptions& options) {
           },
           camera, axes, &summary.recovered_faults);
       const rig::Frame& frame = frames.front();
+      if (std::abs(std::log2(frame.exposure_s / exposures[e])) > 1.0 / 3 && p == 0) {
+        summary.warnings.push_back(
+            "asked for a " + Printf("%g", exposures[e]) +
+            " s exposure, the simulated camera took " + Printf("%g", frame.exposure_s) +
+            " s (its shutter speeds and range, " + options.scene.string() + " sensor:)");
+      }
       const std::string file =
           Printf("p%02d_e%d", static_cast<int>(p), static_cast<int>(e)) + scene.sensor.Extension();
       WriteFileAtomically(summary.photos_dir / file, frame.bytes);

@@ -41,6 +41,10 @@ struct SimulateSummary {
   double virtual_time_s = 0;  // capture time the rig would have taken
   double wall_time_s = 0;
   std::filesystem::path photos_dir, truth_dir;
+  // Exposures the camera took more than a third of a stop away from the one asked for (a
+  // camera offers its own shutter speeds within its own range; capture.json records what it
+  // took), once per requested exposure.
+  std::vector<std::string> warnings;
   std::string ToString() const;
 };
 

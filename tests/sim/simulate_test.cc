@@ -114,6 +114,22 @@ TEST_F(SimulateTest, CommandLinePositionsOverrideTheScene) {
   EXPECT_NEAR(truth["axis_positions_rad"]["light_arm"].get<double>(), -30 * kDegree, 1e-12);
 }
 
+TEST_F(SimulateTest, AnExposureTheCameraCannotTakeIsTakenAtItsNearestAndSaysSo) {
+  SimulateOptions options;
+  options.scene = WriteScene("");
+  options.output_dir = dir_ / "out";
+  options.exposures = {0.01, 4};  // the test scene's shutter speeds end at 0.1 s
+  const SimulateSummary summary = Simulate(options);
+  ASSERT_EQ(summary.warnings.size(), 1u) << summary.ToString();
+  EXPECT_NE(summary.warnings[0].find("asked for a 4 s exposure, the simulated camera took 0.1 s"),
+            std::string::npos)
+      << summary.warnings[0];
+  EXPECT_NE(summary.ToString().find("\nwarning: asked for a 4 s"), std::string::npos);
+  const nlohmann::json log =
+      nlohmann::json::parse(ReadFileToString(dir_ / "out/photos/capture.json"));
+  EXPECT_DOUBLE_EQ(log["frames"][1]["exposure_s"].get<double>(), 0.1);
+}
+
 TEST_F(SimulateTest, RecoversFromScheduledFaults) {
   SimulateOptions options;
   options.scene = WriteScene(R"(faults:
