@@ -56,7 +56,6 @@ std::vector<std::string> SplitList(const std::string& s) {
 struct Judged {
   double sphere_db = NAN;
   double albedo_signed = NAN;  // evaluate::WorstAlbedoError over 0–75° (> 0: too bright)
-  double albedo_worst = NAN;   // its magnitude
   bool outside = false;
 };
 
@@ -64,7 +63,6 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
   Judged j;
   j.sphere_db = evaluate::SphereTest(truth, fit).mean_psnr_db;
   j.albedo_signed = evaluate::WorstAlbedoError(truth, fit);
-  j.albedo_worst = std::abs(j.albedo_signed);
   return j;
 }
 
@@ -210,7 +208,7 @@ int main(int argc, char** argv) {
         sphere["prior"].push_back(jp.sphere_db);
         sphere["ggx"].push_back(ggx);
         sphere["microfacet"].push_back(micro);
-        albedo.push_back(jp.albedo_worst);
+        albedo.push_back(std::abs(jp.albedo_signed));
         std::printf("%-30s %8.2f %8.2f %8.2f %8.1f%% %8.3f %8s %7.2f %6.1f%% %7.2f %6.1f%%\n",
                     name.c_str(), jp.sphere_db, ggx, micro, 100 * jp.albedo_signed,
                     pm.fit.value("misfit", NAN), out ? "yes" : "", jt.sphere_db,
