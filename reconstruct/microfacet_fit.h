@@ -3,8 +3,8 @@
 // the formulas of brdf/microfacet_terms.h:
 //
 //   ggx, beckmann  rho_d (per channel), f0 (per channel), alpha. Parameterized in logs with
-//                  bounds (rho_d, f0 in (0, 1], alpha in [1e-3, 1]); started from a few alphas
-//                  with rho_d and f0 read off the data; the best start is kept.
+//                  bounds (rho_d in [0, 1], f0 in [1e-4, 1], alpha in [1e-3, 1]); started from a
+//                  few alphas with rho_d and f0 read off the data; the best start is kept.
 //   microfacet     ln D at `table_knots` knots over [0, max observed theta_h], monotone by
 //                  construction (ln D_{k+1} = ln D_k − exp(s_k)); a GGX tail beyond the table
 //                  whose roughness matches the drop of ln D over the table's last interval;
