@@ -110,12 +110,13 @@ void LadderOptions::Validate() const {
 
 brdf::Material FitRung(brdf::ModelKind kind, const std::vector<const PositionSamples*>& positions,
                        const LadderOptions& options, bool final, RungResult* details,
-                       const brdf::MicrofacetModelParams* ggx_start) {
+                       const brdf::MicrofacetModelParams* ggx_start, SliceFitMemo* slice_memo) {
   if (positions.empty()) throw Error("no positions to fit");
   if (brdf::IsSliceKind(kind)) {
     SliceFitOptions slice = options.slice;
     slice.covariance = slice.covariance && final;
-    SeedFit seed = FitSeed(positions, slice, kind == brdf::ModelKind::kSeedConstrained);
+    SeedFit seed =
+        FitSeed(positions, slice, kind == brdf::ModelKind::kSeedConstrained, {}, slice_memo);
     if (details) {
       details->warnings = seed.warnings;
       details->slices_from_positions = seed.slices_from_positions;
@@ -194,6 +195,7 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
       if (i != held_out[f]) train[f].push_back(&fit_positions[i]);
     }
   }
+  SliceFitMemo slice_memo;  // the folds refit most slices unchanged
   std::vector<std::vector<FoldFit>> fold_fits(folds, std::vector<FoldFit>(kinds.size()));
   std::mutex say_mutex;
   const auto say_locked = [&](const std::string& message) {
@@ -220,7 +222,7 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
               ? &ggx_rung->material.microfacet
               : nullptr;
       try {
-        rung.material = FitRung(rung.kind, all, options, true, &rung, ggx_start);
+        rung.material = FitRung(rung.kind, all, options, true, &rung, ggx_start, &slice_memo);
         rung.fitted = true;
       } catch (const Error& e) {
         rung.error = e.what();
@@ -250,7 +252,7 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
           start = &fold_fits[f][ggx].material->microfacet;
         }
         try {
-          out.material = FitRung(kind, train[f], options, false, nullptr, start);
+          out.material = FitRung(kind, train[f], options, false, nullptr, start, &slice_memo);
         } catch (const Error& e) {
           out.error = e.what();
         }

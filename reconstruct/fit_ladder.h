@@ -82,9 +82,11 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
                        const std::function<void(const std::string&)>& say = {});
 
 // One rung fitted to the given positions (`final`: with covariance and diagnostics; folds skip
-// them). Throws brdfrig::Error when it cannot be fitted.
+// them; `slice_memo`: the slice rungs' fits to reuse, may be null). Throws brdfrig::Error when
+// it cannot be fitted.
 brdf::Material FitRung(brdf::ModelKind kind, const std::vector<const PositionSamples*>& positions,
                        const LadderOptions& options, bool final, RungResult* details = nullptr,
-                       const brdf::MicrofacetModelParams* ggx_start = nullptr);
+                       const brdf::MicrofacetModelParams* ggx_start = nullptr,
+                       SliceFitMemo* slice_memo = nullptr);
 
 }  // namespace brdfrig::reconstruct

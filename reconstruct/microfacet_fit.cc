@@ -171,13 +171,57 @@ constexpr int kFresnelParams = 4;  // the correction block always has 4 entries 
                                    // when the fit uses none)
 using TableJet = ceres::Jet<double, 15>;
 
+// The table's knot values ln D_k = ln D_0 − Σ_{j<k} exp(s_j) and the drops exp(s_j), worked
+// out once per point the solver evaluates instead of once per sample: the sum over the knots
+// below a sample's was most of a sample's exponentials. Ceres calls PrepareForEvaluation
+// before it evaluates the residuals at a new point. A residual uses the cache only when the
+// steps it was computed from are the ones it is handed, and works them out itself otherwise,
+// so a stale cache can cost time but never change a result; the sums are the same operations
+// in the same order, so the results are identical bit for bit.
+class KnotCache : public ceres::EvaluationCallback {
+ public:
+  KnotCache(const double* head, const double* steps, int knots)
+      : head_(head),
+        steps_(steps),
+        seen_(static_cast<std::size_t>(knots - 1)),
+        drops_(seen_.size()),
+        log_d_(static_cast<std::size_t>(knots)) {}
+
+  void PrepareForEvaluation(bool /*evaluate_jacobians*/, bool new_evaluation_point) override {
+    if (!new_evaluation_point && valid_) return;
+    std::copy(steps_, steps_ + seen_.size(), seen_.begin());
+    head0_ = head_[0];
+    log_d_[0] = head0_;
+    for (std::size_t j = 0; j < seen_.size(); ++j) {
+      drops_[j] = std::exp(seen_[j]);
+      log_d_[j + 1] = log_d_[j] - drops_[j];
+    }
+    valid_ = true;
+  }
+
+  // Whether the cache holds the knots of these parameters, up to step `upto` (exclusive).
+  bool Holds(const double* head, const double* steps, int upto) const {
+    return valid_ && head[0] == head0_ && std::equal(steps, steps + upto, seen_.begin());
+  }
+  const double* drops() const { return drops_.data(); }
+  double log_d(int k) const { return log_d_[k]; }
+
+ private:
+  const double* head_;
+  const double* steps_;
+  bool valid_ = false;
+  double head0_ = 0;
+  std::vector<double> seen_, drops_, log_d_;
+};
+
 // Head block: ln D_0 (held), ln tail alpha, ln shadowing alpha, ln Z.
 // Blocks: head[4], s[knots − 1], ln f0[3], ln rho_d[3], c[4].
 class TableResidual : public ceres::CostFunction {
  public:
   TableResidual(const Prepared* s, const Epsilon* eps, int knots, double max_theta_h,
-                int fresnel_knots)
+                int fresnel_knots, const KnotCache* cache)
       : s_(s),
+        cache_(cache),
         eps_(eps),
         knots_(knots),
         max_theta_h_(max_theta_h),
@@ -192,11 +236,17 @@ class TableResidual : public ceres::CostFunction {
     const double* steps = p[1];
     // The two knots this sample depends on, in double; their derivatives follow below.
     const int upto = at_.tail ? knots_ - 1 : at_.k + 1;  // the knots' steps this sample sees
-    double drops[256];
-    for (int j = 0; j < upto; ++j) drops[j] = std::exp(steps[j]);
-    double lo = head[0];
-    for (int j = 0; j < at_.k; ++j) lo -= drops[j];
-    const double hi = at_.tail ? lo : lo - drops[at_.k];
+    double own_drops[256];
+    const double* drops = own_drops;
+    double lo = head[0], hi = 0;
+    if (cache_ && cache_->Holds(head, steps, upto)) {
+      drops = cache_->drops();
+      lo = cache_->log_d(at_.k);
+    } else {
+      for (int j = 0; j < upto; ++j) own_drops[j] = std::exp(steps[j]);
+      for (int j = 0; j < at_.k; ++j) lo -= drops[j];
+    }
+    hi = at_.tail ? lo : lo - drops[at_.k];
     // Without Jacobians (the trust region's trial steps) in plain doubles: jets would carry
     // 15 derivatives for nothing.
     if (!jacobians) {
@@ -266,6 +316,7 @@ class TableResidual : public ceres::CostFunction {
   }
 
   const Prepared* s_;
+  const KnotCache* cache_;  // may be null
   const Epsilon* eps_;
   int knots_;
   double max_theta_h_;
@@ -557,10 +608,13 @@ MicrofacetFit FitTableMicrofacet(const std::vector<DirectionSample>& samples,
   }
   std::array<double, kFresnelParams> fresnel{};
 
-  ceres::Problem problem;
+  KnotCache knot_cache(head.data(), steps.data(), knots);
+  ceres::Problem::Options problem_options;
+  problem_options.evaluation_callback = &knot_cache;
+  ceres::Problem problem(problem_options);
   for (const Prepared& s : set.samples) {
     problem.AddResidualBlock(
-        new TableResidual(&s, &set.eps, knots, max_theta_h, options.fresnel_knots),
+        new TableResidual(&s, &set.eps, knots, max_theta_h, options.fresnel_knots, &knot_cache),
         MakeLoss(options.loss_scale), head.data(), steps.data(), log_f0.data(), log_rho.data(),
         fresnel.data());
   }

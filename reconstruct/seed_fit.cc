@@ -74,9 +74,25 @@ std::optional<std::array<double, 3>> FarLevel(const std::vector<const PositionSa
 
 }  // namespace
 
+SliceFit SliceFitMemo::Fit(const std::vector<int>& positions, const BrdfSamples& samples,
+                           const SliceFitOptions& options,
+                           const std::optional<std::array<double, 3>>& a2) {
+  const Key key{positions, options.covariance, a2.has_value(),
+                a2.value_or(std::array<double, 3>{})};
+  {
+    std::lock_guard lock(mutex_);
+    if (const auto found = fits_.find(key); found != fits_.end()) return found->second;
+  }
+  // Fitted outside the lock: two threads may fit the same slice at once, with the same result.
+  SliceFit fit = FitSlice(samples, options, a2);
+  std::lock_guard lock(mutex_);
+  fits_.emplace(key, fit);
+  return fit;
+}
+
 SeedFit FitSeed(const std::vector<const PositionSamples*>& positions,
                 const SliceFitOptions& options, bool constrained,
-                const std::function<void(const std::string&)>& say) {
+                const std::function<void(const std::string&)>& say, SliceFitMemo* memo) {
   std::vector<const PositionSamples*> sorted = positions;
   std::sort(sorted.begin(), sorted.end(), [](const PositionSamples* a, const PositionSamples* b) {
     return a->slices.theta_in < b->slices.theta_in;
@@ -95,6 +111,11 @@ SeedFit FitSeed(const std::vector<const PositionSamples*>& positions,
     inputs.back().positions.push_back(p->index);
   }
 
+  const auto fit_slice = [&](const SliceInput& input,
+                             const std::optional<std::array<double, 3>>& a2) {
+    return memo ? memo->Fit(input.positions, input.samples, options, a2)
+                : FitSlice(input.samples, options, a2);
+  };
   SeedFit out;
   std::vector<SliceFit> fits;
   std::optional<std::array<double, 3>> shared_a2;
@@ -111,7 +132,7 @@ SeedFit FitSeed(const std::vector<const PositionSamples*>& positions,
   for (const SliceInput& input : inputs) {
     if (say)
       say("fitting the slice at theta_in " + Fixed(Degrees(input.samples.theta_in), 2) + "°");
-    fits.push_back(FitSlice(input.samples, options, shared_a2));
+    fits.push_back(fit_slice(input, shared_a2));
   }
   if (!shared_a2) {
     // A slice whose samples never reach the lobe's tail cannot tell A2: it takes the median A2
@@ -134,7 +155,7 @@ SeedFit FitSeed(const std::vector<const PositionSamples*>& positions,
         std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
         shared[c] = v[v.size() / 2];
       }
-      fits[i] = FitSlice(inputs[i].samples, options, shared);
+      fits[i] = fit_slice(inputs[i], shared);
       fits[i].warnings.push_back(
           "A2 shared across slices: median of the " + std::to_string(observed_a2[0].size()) +
           (constrained ? " slices' fitted floors" : " slices whose samples reach the tail"));

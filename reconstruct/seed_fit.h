@@ -10,8 +10,13 @@
 //                     scaled down until it does not.
 #pragma once
 
+#include <array>
+#include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "brdf/material_file.h"
@@ -35,9 +40,28 @@ struct SeedFit {
   std::vector<std::string> warnings;
 };
 
-// `say`: progress lines (may be empty). Throws brdfrig::Error when a slice cannot be fitted.
+// Slice fits made during one ladder run, by the positions whose samples they pool, the
+// diffuse level they were held to and whether they carry a covariance. The leave-one-position-
+// out folds fit the same slices again and again (a slice depends only on its own positions'
+// samples): each is fitted once. Thread-safe; valid only while the positions' samples and the
+// other SliceFitOptions stay the same (one ladder run). A fit is deterministic, so the results
+// are the same with or without the memo, whatever the order of the fits.
+class SliceFitMemo {
+ public:
+  SliceFit Fit(const std::vector<int>& positions, const BrdfSamples& samples,
+               const SliceFitOptions& options, const std::optional<std::array<double, 3>>& a2);
+
+ private:
+  using Key = std::tuple<std::vector<int>, bool, bool, std::array<double, 3>>;
+  std::mutex mutex_;
+  std::map<Key, SliceFit> fits_;
+};
+
+// `say`: progress lines (may be empty); `memo`: slice fits to reuse (may be null). Throws
+// brdfrig::Error when a slice cannot be fitted.
 SeedFit FitSeed(const std::vector<const PositionSamples*>& positions,
                 const SliceFitOptions& options, bool constrained,
-                const std::function<void(const std::string&)>& say = {});
+                const std::function<void(const std::string&)>& say = {},
+                SliceFitMemo* memo = nullptr);
 
 }  // namespace brdfrig::reconstruct
