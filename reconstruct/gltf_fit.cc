@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -11,6 +12,7 @@
 #include "common/error.h"
 #include "common/median.h"
 #include "common/option_check.h"
+#include "common/parallel.h"
 #include "reconstruct/log_loss.h"
 
 namespace brdfrig::reconstruct {
@@ -212,39 +214,52 @@ GltfFit FitGltf(const std::vector<DirectionSample>& input, const GltfFitOptions&
   }
   const Epsilon eps = LossEpsilon(input, options.epsilon_fraction);
 
+  // The dielectric and the metal start, solved side by side (each alone on its thread, so the
+  // results do not depend on the thread count); the lower cost wins, the dielectric on a tie.
+  std::array<Start, 2> solved;
+  std::array<double, 2> cost;
+  cost.fill(std::numeric_limits<double>::infinity());
+  ParallelFor(2, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const bool metal = i == 1;
+      Start& x = solved[i];
+      x = BestStart(samples, eps, metal);
+      ceres::Problem problem;
+      for (const Prepared& s : samples) {
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<Residual, 3, 3, 1, 1, 3, 1>(new Residual{&s, &eps}),
+            options.loss_scale > 0 ? new ceres::HuberLoss(options.loss_scale) : nullptr, x.base,
+            &x.metallic, &x.roughness, x.f0, &x.specular);
+      }
+      for (int c = 0; c < 3; ++c) {
+        problem.SetParameterLowerBound(x.base, c, 0);
+        problem.SetParameterUpperBound(x.base, c, 1);
+        problem.SetParameterLowerBound(x.f0, c, 0);
+        problem.SetParameterUpperBound(x.f0, c, kMaxDielectricF0);
+      }
+      problem.SetParameterLowerBound(&x.metallic, 0, 0);
+      problem.SetParameterUpperBound(&x.metallic, 0, 1);
+      problem.SetParameterLowerBound(&x.roughness, 0, kMinRoughness);
+      problem.SetParameterUpperBound(&x.roughness, 0, 1);
+      problem.SetParameterLowerBound(&x.specular, 0, 0);
+      problem.SetParameterUpperBound(&x.specular, 0, 1);
+      ceres::Solver::Options solver;
+      solver.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+      solver.max_num_iterations = options.max_iterations;
+      solver.function_tolerance = 1e-7;
+      solver.parameter_tolerance = 1e-8;
+      solver.num_threads = 1;
+      ceres::Solver::Summary summary;
+      ceres::Solve(solver, &problem, &summary);
+      cost[i] = summary.final_cost;
+    }
+  });
   GltfFit best;
   double best_cost = std::numeric_limits<double>::infinity();
-  for (const bool metal : {false, true}) {
-    Start x = BestStart(samples, eps, metal);
-    ceres::Problem problem;
-    for (const Prepared& s : samples) {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<Residual, 3, 3, 1, 1, 3, 1>(new Residual{&s, &eps}),
-          options.loss_scale > 0 ? new ceres::HuberLoss(options.loss_scale) : nullptr, x.base,
-          &x.metallic, &x.roughness, x.f0, &x.specular);
-    }
-    for (int c = 0; c < 3; ++c) {
-      problem.SetParameterLowerBound(x.base, c, 0);
-      problem.SetParameterUpperBound(x.base, c, 1);
-      problem.SetParameterLowerBound(x.f0, c, 0);
-      problem.SetParameterUpperBound(x.f0, c, kMaxDielectricF0);
-    }
-    problem.SetParameterLowerBound(&x.metallic, 0, 0);
-    problem.SetParameterUpperBound(&x.metallic, 0, 1);
-    problem.SetParameterLowerBound(&x.roughness, 0, kMinRoughness);
-    problem.SetParameterUpperBound(&x.roughness, 0, 1);
-    problem.SetParameterLowerBound(&x.specular, 0, 0);
-    problem.SetParameterUpperBound(&x.specular, 0, 1);
-    ceres::Solver::Options solver;
-    solver.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    solver.max_num_iterations = options.max_iterations;
-    solver.function_tolerance = 1e-7;
-    solver.parameter_tolerance = 1e-8;
-    solver.num_threads = 1;
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver, &problem, &summary);
-    if (!(summary.final_cost < best_cost)) continue;
-    best_cost = summary.final_cost;
+  for (std::size_t i = 0; i < solved.size(); ++i) {
+    if (!(cost[i] < best_cost)) continue;
+    best_cost = cost[i];
+    const Start& x = solved[i];
     brdf::GltfParams& p = best.params;
     p.base_color = brdf::Rgb(x.base[0], x.base[1], x.base[2]).cwiseMax(0).cwiseMin(1);
     p.metallic = std::clamp(x.metallic, 0.0, 1.0);

@@ -216,6 +216,40 @@ TEST(FitLadderTest, EveryFoldIsARefitWithoutItsHeldOutPosition) {
   }
 }
 
+// The folds take their slice fits from a memo: what it returns must be what a fresh fit
+// returns, the first time and from the memo, and a slice held to a diffuse level (or fitted
+// with a covariance) must not be served the free fit of the same positions.
+TEST(FitLadderTest, TheSliceMemoReturnsAFreshFitForEachDiffuseLevelAndCovariance) {
+  const brdf::MicrofacetModel truth(GgxTruth());
+  const std::vector<PositionSamples> positions = Positions(truth, DesignedPatches());
+  const BrdfSamples& samples = positions[0].slices;
+  SliceFitOptions plain;
+  plain.covariance = false;
+  const SliceFitOptions with_covariance;
+  const std::array<double, 3> level = {0.01, 0.02, 0.03};
+  const auto expect_same = [](const SliceFit& a, const SliceFit& b, const char* what) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(a.slice.channel[c].a1, b.slice.channel[c].a1) << what;
+      EXPECT_EQ(a.slice.channel[c].a2, b.slice.channel[c].a2) << what;
+      EXPECT_EQ(a.slice.channel[c].h, b.slice.channel[c].h) << what;
+      EXPECT_EQ(a.slice.channel[c].x0, b.slice.channel[c].x0) << what;
+      EXPECT_EQ(std::isnan(a.channel[c].stddev[0]), std::isnan(b.channel[c].stddev[0])) << what;
+    }
+  };
+  SliceFitMemo memo;
+  for (int pass = 0; pass < 2; ++pass) {  // the second pass is served from the memo
+    expect_same(memo.Fit({0}, samples, plain, std::nullopt), FitSlice(samples, plain), "free");
+    expect_same(memo.Fit({0}, samples, plain, level), FitSlice(samples, plain, level), "held");
+    expect_same(memo.Fit({0}, samples, with_covariance, std::nullopt),
+                FitSlice(samples, with_covariance), "covariance");
+  }
+  EXPECT_NE(memo.Fit({0}, samples, plain, level).slice.channel[2].a2,
+            memo.Fit({0}, samples, plain, std::nullopt).slice.channel[2].a2);
+  EXPECT_TRUE(std::isnan(memo.Fit({0}, samples, plain, std::nullopt).channel[0].stddev[0]));
+  EXPECT_FALSE(
+      std::isnan(memo.Fit({0}, samples, with_covariance, std::nullopt).channel[0].stddev[0]));
+}
+
 // A photo whose every block was darker than the sensor's noise floor has no direction sample.
 // It cannot be held out (there is nothing to score on), so the folds are the other positions,
 // every score finite, and the choice is made as usual.
