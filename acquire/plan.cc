@@ -91,6 +91,13 @@ void ParseExposures(const YamlNode& node, Plan* plan) {
   if (auto h = settings.Optional("highlight_max"))
     a.highlight_max = h->InRange(h->AsDouble(), 0.05, 1);
   if (auto p = settings.Optional("paper_level")) a.paper_level = p->InRange(p->AsDouble(), 0.01, 1);
+  if (auto l = settings.Optional("sample_level"))
+    a.sample_level = l->InRange(l->AsDouble(), 0.001, 1);
+  if (auto l = settings.Optional("longest_max_s")) a.longest_max_s = l->Positive(l->AsDouble());
+  if (a.longest_max_s < a.metering_s) {
+    settings.Fail("longest_max_s (" + std::to_string(a.longest_max_s) +
+                  " s) is shorter than metering_s (" + std::to_string(a.metering_s) + " s)");
+  }
   settings.Finish();
 }
 

@@ -47,13 +47,18 @@ struct PlannedPosition {
 };
 
 // Auto-bracketing: a metering shot at each position decides the bracket so that the highlight
-// is below `highlight_max` (fraction of full scale) in the shortest exposure and the paper
-// reaches `paper_level` in the longest.
+// is below `highlight_max` (fraction of full scale) in the shortest exposure, and in the
+// longest the paper reaches `paper_level` and the darker part of the sample (the 10th
+// percentile of the cut-out's levels) `sample_level`, up to `longest_max_s`. The sample's
+// level is ten times the reconstruction's noise floor (0.1 % of full scale): a dark sample
+// then reads above it instead of being left out as noise.
 struct AutoBracket {
   int count = 3;
   double metering_s = 0.008;
   double highlight_max = 0.8;
   double paper_level = 0.4;
+  double sample_level = 0.01;
+  double longest_max_s = 30;
 };
 
 struct Plan {

@@ -300,7 +300,7 @@ ReconstructionResult Reconstruct(const CaptureSet& capture, const ReconstructOpt
                 " % of full scale) at every position, even in the longest exposure (" +
                 Fixed(LongestExposure(capture), 4) +
                 " s): nothing was measured. Lengthen the bracket (the plan's `exposures:`, or "
-                "auto-bracketing) until the sample reads above the floor.");
+                "auto-bracketing's `longest_max_s`) until the sample reads above the floor.");
   }
 
   // Stages 2–3: every rung of the ladder, scored on what it was not fitted to.

@@ -44,6 +44,27 @@ TEST(PlanTest, SymmetricArmsPresetSpreadsPositionsEvenly) {
   EXPECT_EQ(plan.BracketSize(), 3);
 }
 
+TEST(PlanTest, AutoBracketingReadsTheSampleLevelAndTheLongestExposureAllowed) {
+  const Plan plan = LoadPlanString(
+      "sample: s\npositions:\n  - {camera_arm: 20}\n"
+      "exposures: {auto: {count: 4, sample_level: 0.02, longest_max_s: 5}}\n",
+      "plan.yaml");
+  ASSERT_TRUE(plan.auto_bracket);
+  EXPECT_EQ(plan.auto_settings.count, 4);
+  EXPECT_DOUBLE_EQ(plan.auto_settings.sample_level, 0.02);
+  EXPECT_DOUBLE_EQ(plan.auto_settings.longest_max_s, 5);
+  // Defaults: the sample at ten times the reconstruction's noise floor, up to 30 s.
+  const Plan defaults = LoadPlanString("sample: s\npositions:\n  - {camera_arm: 20}\n", "p.yaml");
+  EXPECT_DOUBLE_EQ(defaults.auto_settings.sample_level, 0.01);
+  EXPECT_DOUBLE_EQ(defaults.auto_settings.longest_max_s, 30);
+  // A longest exposure shorter than the metering shot cannot be met: an error at its line.
+  const std::string error = ErrorOf(
+      "sample: s\npositions:\n  - {camera_arm: 20}\n"
+      "exposures: {auto: {metering_s: 0.1, longest_max_s: 0.01}}\n");
+  EXPECT_NE(error.find("plan.yaml:4:"), std::string::npos) << error;
+  EXPECT_NE(error.find("longest_max_s"), std::string::npos) << error;
+}
+
 TEST(PlanTest, ErrorsNameFileAndLine) {
   EXPECT_NE(ErrorOf("sample: s\npositions:\n  - {camera_arm: 20}\nexposures: [0.01, -1]\n")
                 .find("plan.yaml:4:"),

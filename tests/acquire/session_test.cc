@@ -181,6 +181,39 @@ settle_s: 0
   EXPECT_TRUE(s.Complete());
 }
 
+// A dark sample under bright paper: metering the paper alone exposed it for the paper, and the
+// sample read below the reconstruction's noise floor. The bracket now stretches until the
+// sample's darker part reads at 1 % of full scale; the camera takes it and records what it took.
+TEST(SessionTest, AutoBracketExposesADarkSampleLongerThanThePaperNeeds) {
+  const std::string plan = R"(sample: auto
+positions:
+  - {camera_arm: 30, light_arm: -30}
+exposures: {auto: {count: 3, metering_s: 0.01}}
+settle_s: 0
+)";
+  std::vector<double> longest;
+  for (const char* brdf :
+       {"{model: ggx, alpha: 0.1, f0: 0.5, diffuse: 0.1}", "{model: lambert, albedo: 0.002}"}) {
+    std::string scene = testing::SmallSceneYaml();
+    const std::string bright = "brdf: {model: ggx, alpha: 0.1, f0: 0.5, diffuse: 0.1}";
+    scene.replace(scene.find(bright), bright.size(), std::string("brdf: ") + brdf);
+    const std::string shutter = "shutter_speeds: [0.001, 0.01, 0.1]";
+    scene.replace(scene.find(shutter), shutter.size(),
+                  "shutter_speeds: [0.001, 0.01, 0.1, 0.25, 0.5, 1, 2, 4, 8]");
+    const auto rig = testing::MakeTestRig("session_auto_dark", "", plan);
+    std::ofstream(rig.dir / "scene.yaml") << scene;
+    const CaptureSummary summary = RunCapture(Options(rig, "a"));
+    ASSERT_EQ(summary.run.status, ExitStatus::kSuccess) << summary.ToString();
+    const SessionContents s = ReadSession(rig.sessions / "a");
+    ASSERT_EQ(s.planned_brackets[0].size(), 3u);
+    longest.push_back(s.planned_brackets[0].back());
+    EXPECT_LE(s.frames.back().exposure_s, 8) << brdf;
+  }
+  // Paper at 0.7, the dark sample at 0.002: the paper's exposure leaves it at about 0.1 % of
+  // full scale, the floor itself; the metered bracket goes about ten times longer.
+  EXPECT_GT(longest[1], 5 * longest[0]) << longest[0] << " s, " << longest[1] << " s";
+}
+
 TEST(SessionTest, OverlappedRecordingIsCloserToTheUnavoidableTimeThanSerial) {
   const auto rig = testing::MakeTestRig("session_timing");
   CaptureOptions overlapped = Options(rig, "overlapped");
