@@ -76,10 +76,10 @@ MeteringResult ChooseBracket(const cv::Mat& levels, double metering_exposure_s,
   double longest = metering_exposure_s * settings.paper_level / result.paper_level;
   std::vector<float> sample = CutoutSamples(levels, geometry, axes);
   if (!sample.empty()) {
-    std::nth_element(sample.begin(), sample.begin() + sample.size() / 10, sample.end());
+    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
     // A sample too dark for the metering shot to see reads as (nearly) zero: it then needs
     // the longest exposure there is.
-    result.sample_level = std::max(1e-9, static_cast<double>(sample[sample.size() / 10]));
+    result.sample_level = std::max(1e-9, static_cast<double>(sample[sample.size() / 2]));
     const double sample_longest = metering_exposure_s * settings.sample_level / result.sample_level;
     if (sample_longest > settings.longest_max_s) result.sample_needs_s = sample_longest;
     longest = std::max(longest, std::min(sample_longest, settings.longest_max_s));

@@ -1,6 +1,6 @@
 // Auto-bracketing: from one metering shot, the bracket of a position. The shortest exposure
 // keeps the highlight (the brightest pixel) below `highlight_max`; the longest brings the paper
-// around the cut-out and the 10th percentile of the cut-out itself (both located with the
+// around the cut-out and the median of the cut-out itself (both located with the
 // nominal geometry) to `paper_level` and `sample_level`, whichever takes longer, but no longer
 // than `longest_max_s`.
 #pragma once
@@ -20,7 +20,7 @@ struct MeteringResult {
   std::vector<double> bracket_s;  // ascending, AutoBracket::count exposures
   double highlight_level = 0;     // brightest pixel of the metering shot
   double paper_level = 0;         // median paper level of the metering shot
-  double sample_level = 0;        // 10th percentile of the cut-out's levels in the metering shot
+  double sample_level = 0;        // median of the cut-out's levels in the metering shot
   // Set when the sample would need a longer exposure than longest_max_s to reach
   // sample_level: the exposure it would need (the bracket stops at longest_max_s).
   std::optional<double> sample_needs_s;

@@ -48,10 +48,11 @@ struct PlannedPosition {
 
 // Auto-bracketing: a metering shot at each position decides the bracket so that the highlight
 // is below `highlight_max` (fraction of full scale) in the shortest exposure, and in the
-// longest the paper reaches `paper_level` and the darker part of the sample (the 10th
-// percentile of the cut-out's levels) `sample_level`, up to `longest_max_s`. The sample's
-// level is ten times the reconstruction's noise floor (0.1 % of full scale): a dark sample
-// then reads above it instead of being left out as noise.
+// longest the paper reaches `paper_level` and the sample (the median of the cut-out's levels)
+// `sample_level`, up to `longest_max_s`. The sample's level is ten times the reconstruction's
+// noise floor (0.1 % of full scale): a dark sample then reads above it instead of being left
+// out as noise. The median, not a low percentile: a glossy sample's darker part is its lobe's
+// far tail, which no exposure a lab would wait for lifts above the floor.
 struct AutoBracket {
   int count = 3;
   double metering_s = 0.008;

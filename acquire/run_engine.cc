@@ -356,14 +356,13 @@ std::vector<double> RunEngine::Meter(int p) {
     }
     std::ostringstream text;
     text << "metering at " << Seconds(actual) << ": highlight " << m.highlight_level << ", paper "
-         << m.paper_level << ", sample (10th percentile) " << m.sample_level
-         << " of full scale; bracket";
+         << m.paper_level << ", sample (median) " << m.sample_level << " of full scale; bracket";
     for (const double e : m.bracket_s) text << " " << Seconds(e);
     store_.LogEvent("info", p, text.str());
     if (m.sample_needs_s) {
       std::ostringstream warning;
-      warning << "the sample is dark: its darker part would need " << Seconds(*m.sample_needs_s)
-              << " to reach " << plan_.auto_settings.sample_level
+      warning << "the sample is dark: it would need " << Seconds(*m.sample_needs_s) << " to reach "
+              << plan_.auto_settings.sample_level
               << " of full scale, and the bracket stops at longest_max_s "
               << Seconds(plan_.auto_settings.longest_max_s)
               << "; the reconstruction leaves out what stays below its noise floor (raise "

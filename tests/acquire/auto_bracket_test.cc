@@ -1,5 +1,5 @@
 // Auto-bracketing from a metering shot: the shortest exposure keeps the highlight, the longest
-// brings the paper to its level and the darker part of the sample above the reconstruction's
+// brings the paper to its level and the sample (the cut-out's median) above the reconstruction's
 // noise floor, up to the longest exposure the plan allows.
 #include "acquire/auto_bracket.h"
 

@@ -183,7 +183,7 @@ settle_s: 0
 
 // A dark sample under bright paper: metering the paper alone exposed it for the paper, and the
 // sample read below the reconstruction's noise floor. The bracket now stretches until the
-// sample's darker part reads at 1 % of full scale; the camera takes it and records what it took.
+// sample's median reads at 1 % of full scale; the camera takes it and records what it took.
 TEST(SessionTest, AutoBracketExposesADarkSampleLongerThanThePaperNeeds) {
   const std::string plan = R"(sample: auto
 positions:
