@@ -96,6 +96,39 @@ Stencil StencilAt(const RusinkiewiczGrid& grid, const HalfDiffAngles& a) {
   return s;
 }
 
+std::vector<double> NodeMeasure(const RusinkiewiczGrid& grid) {
+  grid.Validate();
+  // Midpoint rule on the index coordinates, kSub points per interval along each axis: the
+  // hats are piecewise linear there, the measure smooth.
+  constexpr int kSub = 4;
+  const int nh = (grid.theta_h - 1) * kSub, nd = (grid.theta_d - 1) * kSub,
+            np = (grid.phi_d - 1) * kSub;
+  const double dud = kHalfPi / nd, dup = kHalfPi / np;
+  std::vector<double> w(grid.Cells(), 0.0);
+  for (int i = 0; i < nh; ++i) {
+    const double u = (i + 0.5) / nh;
+    const double theta_h = kHalfPi * u * u, dtheta_h = M_PI * u / nh;
+    for (int j = 0; j < nd; ++j) {
+      const double theta_d = (j + 0.5) * dud;
+      for (int k = 0; k < np; ++k) {
+        const HalfDiffAngles a{theta_h, theta_d, (k + 0.5) * dup};
+        Vec3 l, v;
+        FromHalfDiffAngles(a, &l, &v);
+        if (l.z() <= 0 || v.z() <= 0) continue;
+        const double density =
+            4 * std::cos(theta_d) * std::sin(theta_h) * std::sin(theta_d) * l.z() * v.z();
+        const double mass = density * dtheta_h * dud * dup;
+        const Stencil s = StencilAt(grid, a);
+        for (int n = 0; n < 8; ++n) w[s.node[n]] += s.weight[n] * mass;
+      }
+    }
+  }
+  double total = 0;
+  for (const double x : w) total += x;
+  for (double& x : w) x *= grid.Cells() / total;
+  return w;
+}
+
 double CosineProduct(const RusinkiewiczGrid& grid, const Vec3& l, const Vec3& v) {
   return std::max(l.z(), grid.cos_floor) * std::max(v.z(), grid.cos_floor);
 }

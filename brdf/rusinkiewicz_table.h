@@ -47,6 +47,14 @@ void FromHalfDiffAngles(const HalfDiffAngles& a, Vec3* l, Vec3* v);
 // The node coordinates of index (ih, id, ip).
 HalfDiffAngles NodeAngles(const RusinkiewiczGrid& grid, int ih, int id, int ip);
 
+// How much of the space of direction pairs (light, view, both above the surface) each node
+// stands for: the integral of its trilinear hat against the measure
+// cos θi · cos θo · dωi dωo (= 4 cos θd dωh dωd, Rusinkiewicz 1998), normalised to mean 1 over
+// the nodes. An error of q weighted by it is the error a rendering under uniform light would
+// see: nodes below the horizon weigh nothing, grazing ones little, and the sqrt-spaced nodes of
+// the specular peak by the small solid angle each covers.
+std::vector<double> NodeMeasure(const RusinkiewiczGrid& grid);
+
 // The eight nodes around a point and their trilinear weights (summing to 1).
 struct Stencil {
   std::array<int, 8> node{};

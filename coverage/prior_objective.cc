@@ -16,6 +16,14 @@ PriorObjective::PriorObjective(const prior::MeasuredPrior& prior, int components
       points_per_side_(std::max(points_per_side, 2)) {
   components_ = prior.components.leftCols(k_);
   inverse_variances_ = prior.variances.head(k_).cwiseInverse();
+  const std::vector<double> measure = brdf::NodeMeasure(prior.grid);
+  const Eigen::Map<const Eigen::VectorXd> w(measure.data(),
+                                            static_cast<Eigen::Index>(measure.size()));
+  metric_ = components_.transpose() * w.asDiagonal() * components_;
+  // M = R Rᵀ; a component that lives only below the horizon makes M singular, hence the jitter.
+  Eigen::MatrixXd jittered = metric_;
+  jittered.diagonal().array() += 1e-12 * metric_.diagonal().mean();
+  metric_root_ = Eigen::LLT<Eigen::MatrixXd>(jittered).matrixL();
 }
 
 Eigen::MatrixXd PriorObjective::Information(const geometry::RigGeometry& rig,
@@ -59,12 +67,14 @@ double PriorObjective::ExpectedError(const Eigen::MatrixXd& total) const {
   Small precision = total / (prior_.noise_sigma * prior_.noise_sigma);
   precision.diagonal() += inverse_variances_;
   const Eigen::LLT<Small> llt(precision);
-  Small l_inv = Small::Identity(k_, k_);
-  llt.matrixL().solveInPlace(l_inv);  // trace(P⁻¹) = ‖L⁻¹‖²
-  return l_inv.squaredNorm();
+  Small x = metric_root_;
+  llt.matrixL().solveInPlace(x);  // trace(M P⁻¹) = ‖L⁻¹ R‖² (P = L Lᵀ, M = R Rᵀ)
+  return x.squaredNorm();
 }
 
-double PriorObjective::PriorError() const { return inverse_variances_.cwiseInverse().sum(); }
+double PriorObjective::PriorError() const {
+  return metric_.diagonal().dot(inverse_variances_.cwiseInverse());
+}
 
 double PriorObjective::RmsPerNode(double error) const {
   return std::sqrt(error / static_cast<double>(prior_.grid.Cells()));
@@ -93,7 +103,8 @@ double PriorObjective::LeaveOneOutError(const Eigen::MatrixXd& total) const {
       // Noise-free observations at the plan's points: estimate = mean + P⁻¹ D (truth − mean).
       const Eigen::VectorXd offset = own.row(c).transpose() - mean;
       const Eigen::VectorXd estimate = llt.solve(data * offset);
-      error += (estimate - offset).squaredNorm();
+      const Eigen::VectorXd e = estimate - offset;
+      error += e.dot(metric_ * e);
     }
   }
   return error / static_cast<double>(rows);

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "brdf/analytic.h"
 #include "brdf/material_file.h"
@@ -61,6 +63,52 @@ TEST(RusinkiewiczTable, TabulatedGgxMatchesTheModelAndIsReciprocal) {
   const Vec3 l = Vec3(0.3, 0.1, 0.9).normalized(), v = Vec3(-0.2, -0.3, 0.8).normalized();
   EXPECT_NEAR(table.Eval(r * l, r * v, r * Vec3::UnitZ())[0], table.Eval(l, v, Vec3::UnitZ())[0],
               1e-9);
+}
+
+// The node measure integrates the cosine-weighted measure of direction pairs: a node whose
+// neighbourhood lies below the horizon weighs nothing, and the measure's own moments come out
+// of a weighted sum over nodes, E[cos θ] = ∫cos²θ dω / ∫cos θ dω = 2/3 for the light and the
+// view alike and E[cos θi · cos θo] = (2/3)² (they are independent under this measure). The
+// folded φd puts the light on the lower side at every node, so the sum takes both cosines.
+TEST(RusinkiewiczTable, NodeMeasureIntegratesTheCosineWeightedMeasureOfDirectionPairs) {
+  const RusinkiewiczGrid grid;
+  const std::vector<double> w = NodeMeasure(grid);
+  ASSERT_EQ(static_cast<int>(w.size()), grid.Cells());
+  double total = 0, cos_in = 0, cos_both = 0;
+  int below = 0;
+  for (int ih = 0; ih < grid.theta_h; ++ih) {
+    for (int id = 0; id < grid.theta_d; ++id) {
+      for (int ip = 0; ip < grid.phi_d; ++ip) {
+        const int node = grid.Index(ih, id, ip);
+        ASSERT_GE(w[node], 0);
+        Vec3 l, v;
+        FromHalfDiffAngles(NodeAngles(grid, ih, id, ip), &l, &v);
+        total += w[node];
+        cos_in += w[node] * (std::max(l.z(), 0.0) + std::max(v.z(), 0.0)) / 2;
+        cos_both += w[node] * std::max(l.z(), 0.0) * std::max(v.z(), 0.0);
+        if (ih > 0 && id > 0 && ip > 0 && ih + 1 < grid.theta_h && id + 1 < grid.theta_d &&
+            ip + 1 < grid.phi_d) {
+          // Every cell around the node below the horizon: no pair of directions it stands for.
+          bool all_below = true;
+          for (int dh = -1; dh <= 1; ++dh)
+            for (int dd = -1; dd <= 1; ++dd)
+              for (int dp = -1; dp <= 1; ++dp) {
+                Vec3 ln, vn;
+                FromHalfDiffAngles(NodeAngles(grid, ih + dh, id + dd, ip + dp), &ln, &vn);
+                all_below = all_below && ln.z() < 0;
+              }
+          if (all_below) {
+            EXPECT_EQ(w[node], 0) << ih << " " << id << " " << ip;
+            ++below;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(below, grid.Cells() / 10);
+  EXPECT_NEAR(total / grid.Cells(), 1.0, 1e-12);
+  EXPECT_NEAR(cos_in / total, 2.0 / 3.0, 0.01);
+  EXPECT_NEAR(cos_both / total, 4.0 / 9.0, 0.01);
 }
 
 TEST(RusinkiewiczTable, MaterialFileRoundTripsWithinTheEncodingStep) {

@@ -2,6 +2,7 @@
 // the (θh, θd) cells the designer claims.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "acquire/capture.h"
@@ -127,9 +128,11 @@ TEST(ValidationTest, SimulatedCaptureOfADesignedPlanObservesWhatTheDesignerClaim
     int agree = 0;
     for (const int c : seen) agree += predicted.count(c);
     // The pixels and the designer's cut-out points sample the same patch: the cells agree but
-    // for a few on the patch's border.
-    EXPECT_GE(agree, 0.9 * seen.size()) << "position " << p;
-    EXPECT_GE(agree, 0.9 * predicted.size()) << "position " << p;
+    // for a few on the patch's border (one, on a patch of fewer than ten cells: a 320 x 240
+    // image may not reach a border cell that the designer's points touch).
+    const auto few = [](std::size_t n) { return std::min(0.9 * n, n - 1.0); };
+    EXPECT_GE(agree, few(seen.size())) << "position " << p;
+    EXPECT_GE(agree, few(predicted.size())) << "position " << p;
   }
 }
 
