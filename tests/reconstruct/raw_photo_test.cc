@@ -87,5 +87,21 @@ TEST(RawPhoto, CorruptRawNamesTheFile) {
   }
 }
 
+// fuzz_photo's find: bytes that are no PNG, JPEG or TIFF but hold "DICM" reached OpenCV's DICOM
+// decoder (GDCM), which aborted the process. They are refused with the file's name instead.
+TEST(RawPhoto, AFileOfAnotherFormatIsRefusedBeforeOpenCvSeesIt) {
+  const auto path = Scratch("p00_e0.png");
+  std::string bytes = "=PNG\r\n\x1a\n";
+  bytes += std::string(120, '\0') + "DICM" + std::string(64, '\x01');
+  WriteFileAtomically(path, bytes);
+  try {
+    ReadPhoto(path.string());
+    FAIL() << "a file of another format was decoded";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("p00_e0.png"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a PNG, JPEG or TIFF"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace brdfrig::reconstruct
