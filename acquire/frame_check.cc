@@ -6,6 +6,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
+#include "common/photo_signature.h"
+
 namespace brdfrig::acquire {
 namespace {
 
@@ -26,6 +28,11 @@ FrameCheck CheckFrame(std::span<const std::byte> bytes, const std::string& file_
     return check;
   }
   if (!Decodable(file_name)) return check;  // RAW: LibRaw decoding belongs to reconstruct
+  if (!HasPhotoSignature(bytes)) {
+    check.ok = false;
+    check.problem = "not a PNG, JPEG or TIFF image";
+    return check;
+  }
   const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U,
                        const_cast<std::byte*>(bytes.data()));
   const cv::Mat image = cv::imdecode(buffer, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -16,6 +15,7 @@
 #include "common/exr_io.h"
 #include "common/option_check.h"
 #include "common/parallel.h"
+#include "common/photo_signature.h"
 #include "reconstruct/raw_photo.h"
 
 namespace brdfrig::reconstruct {
@@ -196,18 +196,11 @@ cv::Mat ReadPhoto(const std::string& path) {
   // EXR through OpenEXR itself (OpenCV's reader is disabled by default in Debian's build).
   if (std::filesystem::path(path).extension() == ".exr") return ReadRadianceExr(path);
   if (IsRawPhoto(path)) return ReadRawPhoto(path);
-  // Only PNG, JPEG and TIFF go to OpenCV: it hands other signatures to decoders of its own (GDCM
-  // for DICOM among them), and one of those aborts on a malformed file (fuzz_photo found it).
   {
     std::ifstream in(path, std::ios::binary);
-    unsigned char m[8] = {};
-    in.read(reinterpret_cast<char*>(m), 8);
-    const bool png = in.gcount() == 8 && std::memcmp(m, "\x89PNG\r\n\x1a\n", 8) == 0;
-    const bool jpeg = in.gcount() >= 3 && m[0] == 0xFF && m[1] == 0xD8 && m[2] == 0xFF;
-    const bool tiff =
-        in.gcount() >= 4 && ((m[0] == 'I' && m[1] == 'I' && m[2] == 42 && m[3] == 0) ||
-                             (m[0] == 'M' && m[1] == 'M' && m[2] == 0 && m[3] == 42));
-    if (!png && !jpeg && !tiff) {
+    std::array<std::byte, 8> head{};
+    in.read(reinterpret_cast<char*>(head.data()), head.size());
+    if (!HasPhotoSignature(std::span(head.data(), static_cast<std::size_t>(in.gcount())))) {
       throw FileError(path, "not a PNG, JPEG or TIFF photo (missing, truncated or another format)");
     }
   }

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
@@ -59,6 +58,19 @@ TEST(FrameCheckTest, WrongSizeBlackUndecodableAndEmptyAreRejected) {
   const FrameCheck raw = CheckFrame(garbage, "e.NEF", options);
   EXPECT_TRUE(raw.ok);
   EXPECT_FALSE(raw.decoded);
+}
+
+// Bytes of another format named .png never reach OpenCV's decoders (fuzz_photo found one that
+// made GDCM's DICOM reader abort the process; common/photo_signature.h).
+TEST(FrameCheckTest, AFrameOfAnotherFormatIsRejectedBeforeDecoding) {
+  std::string text = "=PNG\r\n\x1a\n";
+  text += std::string(120, '\0') + "DICM" + std::string(64, '\x01');
+  std::vector<std::byte> bytes(text.size());
+  std::memcpy(bytes.data(), text.data(), text.size());
+  const FrameCheck check = CheckFrame(bytes, "p00_e0.png", {});
+  EXPECT_FALSE(check.ok);
+  EXPECT_FALSE(check.decoded);
+  EXPECT_EQ(check.problem, "not a PNG, JPEG or TIFF image");
 }
 
 }  // namespace
