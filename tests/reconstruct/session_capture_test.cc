@@ -76,11 +76,15 @@ TEST(SessionCapture, IdealSessionIsRecoveredToOnePartInAThousand) {
 
 TEST(SessionCapture, AbortedSessionUsesItsCompletePositionsAndSaysSo) {
   SessionSetup s = MakeSession("aborted");
-  // Abort once the second position has its first frame: position 0 complete, 1 partial.
+  // Abort once the second position has its first frame: position 0 complete, 1 partial. The
+  // trigger is the engine's own step (it publishes each frame's index before it shoots it, and
+  // checks for an abort before every shot), not the count of recorded frames: the writer
+  // records on its own thread, and on a loaded machine it fell behind until every position had
+  // been shot before the fourth frame was recorded.
   acquire::RunEngine* engine = nullptr;
   s.capture.on_engine = [&](acquire::RunEngine* e) { engine = e; };
   s.capture.on_progress = [&](const acquire::RunProgress& p) {
-    if (p.frames_recorded >= 4 && engine) engine->Abort("test stops the run");
+    if (p.position == 1 && p.frame == 1 && engine) engine->Abort("test stops the run");
   };
   acquire::RunCapture(s.capture);
   const CaptureSet capture = LoadCapture(s.dir / "session");
