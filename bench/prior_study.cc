@@ -8,10 +8,13 @@
 //
 //   bench_prior_study [--materials a,b,...] [--counts 4,6,8,12] [--components K]
 //                     [--noise SIGMA] [--design-noise SIGMA] [--correction W] [--loo-design]
+//                     [--epsilon E] [--cos-floor C]
 //                     [--no-compact]
 //                     [--rig-changes] [--objective prior|coverage]
 // --design-noise: the noise level of the prior the plan is designed under (default: --noise,
 // as the shipped prior serves both), to tell what the plan and the fit each gain.
+// --epsilon, --cos-floor: the table's mapping q = ln(f·c + ε), c the product of the cosines,
+// each floored (brdf/rusinkiewicz_table.h), for every prior of the run.
 // --rig-changes: the 6-position design of the default rig and of the rig with one change (a
 // cut-out 1.5 times larger, the light at 0.6 of its distance, an extra axis turning the camera
 // about the normal), each with its leave-one-material-out figures.
@@ -120,6 +123,10 @@ int main(int argc, char** argv) {
       design_noise = std::stod(next());
     } else if (a == "--correction") {
       build.correction_weight = std::stod(next());
+    } else if (a == "--epsilon") {
+      build.grid.epsilon = std::stod(next());
+    } else if (a == "--cos-floor") {
+      build.grid.cos_floor = std::stod(next());
     } else if (a == "--loo-design") {
       loo_design = true;
     } else if (a == "--no-compact") {
@@ -144,9 +151,10 @@ int main(int argc, char** argv) {
   const prior::MeasuredPrior full = prior::BuildPrior(set, design_build);
   std::printf(
       "prior study: %zu materials, leave-one-material-out priors (%d components, noise "
-      "%.3g, correction %.3g), noise-free samples at the plan's directions, %s plans designed "
-      "with noise %.3g\n",
+      "%.3g, correction %.3g, epsilon %.3g, cos floor %.3g), noise-free samples at the plan's "
+      "directions, %s plans designed with noise %.3g\n",
       names.size(), full.Components(), build.noise_sigma, build.correction_weight,
+      build.grid.epsilon, build.grid.cos_floor,
       loo_design ? "left-out" : "all-material", design_build.noise_sigma);
   std::vector<RigVariant> variants = {{"default rig", rig}};
   if (rig_changes) variants = RigChanges(rig);
