@@ -154,8 +154,8 @@ int main(int argc, char** argv) {
       "%.3g, correction %.3g, epsilon %.3g, cos floor %.3g), noise-free samples at the plan's "
       "directions, %s plans designed with noise %.3g\n",
       names.size(), full.Components(), build.noise_sigma, build.correction_weight,
-      build.grid.epsilon, build.grid.cos_floor,
-      loo_design ? "left-out" : "all-material", design_build.noise_sigma);
+      build.grid.epsilon, build.grid.cos_floor, loo_design ? "left-out" : "all-material",
+      design_build.noise_sigma);
   std::vector<RigVariant> variants = {{"default rig", rig}};
   if (rig_changes) variants = RigChanges(rig);
   for (const RigVariant& variant : variants) {

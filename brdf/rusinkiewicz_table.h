@@ -25,12 +25,14 @@
 namespace brdfrig::brdf {
 
 struct RusinkiewiczGrid {
-  int theta_h = 64;         // nodes, sqrt-spaced over [0, π/2]
-  int theta_d = 32;         // nodes over [0, π/2]
-  int phi_d = 8;            // nodes over [0, π/2]
-  // ε of the mapping. 3e-5: on the 80 measured materials left out one at a time, 1e-5 to 5e-5
-  // reconstruct from six photos 0.4-0.7 dB better than 1e-4, and the worst material 4-6 dB
-  // better; 1e-3 and 1e-6 lose 1.5 and 0.7 dB (docs/prior.md).
+  int theta_h = 64;  // nodes, sqrt-spaced over [0, π/2]
+  int theta_d = 32;  // nodes over [0, π/2]
+  int phi_d = 8;     // nodes over [0, π/2]
+  // ε of the mapping: below f·c ≈ ε the table stops resolving f, so it decides how much of a
+  // dark channel's and a sharp peak's shape the prior and the fit see. 3e-5: on the 80
+  // measured materials left out one at a time, from noise-free samples of six designed photos,
+  // 1e-5 to 5e-5 reconstruct 0.4-0.7 dB better than 1e-4 (the worst material 4-6 dB), 1e-3
+  // and 1e-6 lose 1.5 and 0.7 dB (docs/prior.md; captured: docs/results.md).
   double epsilon = 3e-5;
   double cos_floor = 0.05;  // floor of each cosine in c
   int Cells() const { return theta_h * theta_d * phi_d; }
