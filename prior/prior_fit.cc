@@ -1,6 +1,7 @@
 #include "prior/prior_fit.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
@@ -13,49 +14,107 @@ void PriorFitOptions::Validate() const {
               misfit_limit, "positive");
 }
 
-PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observation>& observations,
-                        const PriorFitOptions& options) {
-  options.Validate();
-  const brdf::RusinkiewiczGrid& grid = prior.grid;
-  const int k = prior.Components();
+namespace {
+
+// The samples of one kind (values or bounds) in the prior's terms: each one's mean μ and
+// components b interpolated at its coordinates, its weight, and its q per channel.
+struct Rows {
   std::vector<brdf::Stencil> stencils;
+  Eigen::MatrixXd b;
+  Eigen::VectorXd mu, w;
+  std::array<Eigen::VectorXd, 3> q;
+  Eigen::Index Size() const { return mu.size(); }
+};
+
+Rows RowsOf(const MeasuredPrior& prior, const std::vector<Observation>& observations,
+            bool upper_bounds) {
+  const brdf::RusinkiewiczGrid& grid = prior.grid;
+  Rows rows;
   std::vector<double> weights;
   std::array<std::vector<double>, 3> q;
   for (const Observation& o : observations) {
+    if (o.upper_bound != upper_bounds) continue;
     if (!(o.weight > 0) || o.l.z() <= 0 || o.v.z() <= 0 || !o.f.isFinite().all()) continue;
-    stencils.push_back(brdf::StencilAt(grid, brdf::ToHalfDiffAngles(o.l, o.v)));
+    rows.stencils.push_back(brdf::StencilAt(grid, brdf::ToHalfDiffAngles(o.l, o.v)));
     weights.push_back(o.weight);
     const double c = brdf::CosineProduct(grid, o.l, o.v);
     for (int ch = 0; ch < 3; ++ch) q[ch].push_back(brdf::MapValue(grid, o.f[ch], c));
   }
-  const auto n = static_cast<Eigen::Index>(stencils.size());
-  if (n == 0) throw Error("prior fit: no usable sample (every one below the surface or empty)");
-  Eigen::MatrixXd b(n, k);
-  Eigen::VectorXd mu(n);
+  const auto n = static_cast<Eigen::Index>(rows.stencils.size());
+  rows.b.resize(n, prior.Components());
+  rows.mu.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    b.row(i).setZero();
-    mu[i] = 0;
+    rows.b.row(i).setZero();
+    rows.mu[i] = 0;
     for (int j = 0; j < 8; ++j) {
-      const double w = stencils[i].weight[j];
+      const double w = rows.stencils[i].weight[j];
       if (w == 0) continue;
-      b.row(i) += w * prior.components.row(stencils[i].node[j]);
-      mu[i] += w * prior.mean[stencils[i].node[j]];
+      rows.b.row(i) += w * prior.components.row(rows.stencils[i].node[j]);
+      rows.mu[i] += w * prior.mean[rows.stencils[i].node[j]];
     }
   }
-  const Eigen::Map<const Eigen::VectorXd> w(weights.data(), n);
+  rows.w = Eigen::Map<const Eigen::VectorXd>(weights.data(), n);
+  for (int ch = 0; ch < 3; ++ch) rows.q[ch] = Eigen::Map<const Eigen::VectorXd>(q[ch].data(), n);
+  return rows;
+}
+
+// Step 1 for one channel with the bounds the fit exceeds added as values, until that set
+// stops changing (a semismooth Newton method on the one-sided penalty: a few rounds; capped,
+// the last round's coefficients stand). Returns the coefficients; *active counts the bounds.
+Eigen::VectorXd SolveChannel(const Eigen::MatrixXd& normal, const Eigen::VectorXd& rhs,
+                             const Rows& bounds, int ch, double inv_s2, int* active) {
+  Eigen::VectorXd c = normal.ldlt().solve(rhs);
+  std::vector<bool> in(static_cast<std::size_t>(bounds.Size()), false);
+  for (int round = 0; round < 20; ++round) {
+    const Eigen::VectorXd fitted = bounds.mu + bounds.b * c;
+    bool changed = false;
+    for (Eigen::Index i = 0; i < bounds.Size(); ++i) {
+      const bool above = fitted[i] > bounds.q[ch][i];
+      changed = changed || above != in[static_cast<std::size_t>(i)];
+      in[static_cast<std::size_t>(i)] = above;
+    }
+    if (!changed) break;
+    Eigen::MatrixXd n = normal;
+    Eigen::VectorXd r = rhs;
+    for (Eigen::Index i = 0; i < bounds.Size(); ++i) {
+      if (!in[static_cast<std::size_t>(i)]) continue;
+      const double w = bounds.w[i] * inv_s2;
+      n.selfadjointView<Eigen::Lower>().rankUpdate(bounds.b.row(i).transpose(), w);
+      r += bounds.b.row(i).transpose() * (w * (bounds.q[ch][i] - bounds.mu[i]));
+    }
+    c = n.ldlt().solve(r);  // LDLT reads the lower triangle only
+  }
+  *active = static_cast<int>(std::count(in.begin(), in.end(), true));
+  return c;
+}
+
+}  // namespace
+
+PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observation>& observations,
+                        const PriorFitOptions& options) {
+  options.Validate();
+  const brdf::RusinkiewiczGrid& grid = prior.grid;
+  const Rows values = RowsOf(prior, observations, false);
+  const Rows bounds = RowsOf(prior, observations, true);
+  const Eigen::Index n = values.Size();
+  if (n == 0) throw Error("prior fit: no usable sample (every one below the surface or empty)");
+  const Eigen::MatrixXd& b = values.b;
+  const Eigen::VectorXd& w = values.w;
   const double inv_s2 = 1 / (prior.noise_sigma * prior.noise_sigma);
   Eigen::MatrixXd normal = b.transpose() * w.asDiagonal() * b * inv_s2;
   normal.diagonal() += prior.variances.cwiseInverse();
-  const Eigen::LDLT<Eigen::MatrixXd> solver(normal);
 
   PriorFitResult result;
   result.observations = static_cast<int>(n);
+  result.bounds = static_cast<int>(bounds.Size());
   for (int ch = 0; ch < 3; ++ch) {
-    const Eigen::Map<const Eigen::VectorXd> qc(q[ch].data(), n);
-    const Eigen::VectorXd rhs = b.transpose() * (w.asDiagonal() * (qc - mu)) * inv_s2;
-    result.coefficients[ch] = solver.solve(rhs);
+    const Eigen::VectorXd& qc = values.q[ch];
+    const Eigen::VectorXd rhs = b.transpose() * (w.asDiagonal() * (qc - values.mu)) * inv_s2;
+    int active = 0;
+    result.coefficients[ch] = SolveChannel(normal, rhs, bounds, ch, inv_s2, &active);
+    result.bounds_active = std::max(result.bounds_active, active);
     const Eigen::VectorXd table = prior.mean + prior.components * result.coefficients[ch];
-    const Eigen::VectorXd residual = qc - mu - b * result.coefficients[ch];
+    const Eigen::VectorXd residual = qc - values.mu - b * result.coefficients[ch];
     const double rms = std::sqrt(w.dot(residual.cwiseAbs2()) / w.sum());
     result.misfit = std::max(result.misfit, rms);
     result.table[ch].assign(table.data(), table.data() + table.size());
@@ -63,9 +122,9 @@ PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observatio
       std::vector<double> num(grid.Cells(), 0.0), den(grid.Cells(), 0.0);
       for (Eigen::Index i = 0; i < n; ++i) {
         for (int j = 0; j < 8; ++j) {
-          const double sw = w[i] * stencils[i].weight[j];
-          num[stencils[i].node[j]] += sw * residual[i];
-          den[stencils[i].node[j]] += sw;
+          const double sw = w[i] * values.stencils[i].weight[j];
+          num[values.stencils[i].node[j]] += sw * residual[i];
+          den[values.stencils[i].node[j]] += sw;
         }
       }
       for (int node = 0; node < grid.Cells(); ++node) {

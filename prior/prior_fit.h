@@ -5,6 +5,9 @@
 //        Σ_o w_o (q_o − μ(x_o) − b(x_o)·c)² / σ² + Σ_k c_k² / s_k²
 //     (q_o the sample's mapped value, μ and b the mean and components interpolated at its
 //     coordinates, σ the prior's noise level, s_k² the coefficients' variances).
+//     An observation may be an upper bound (a region darker than the photos' noise floor):
+//     it adds the same term only while the fit lies above it, a one-sided penalty, solved by
+//     re-solving with the violated bounds as observations until that set stops changing.
 //  2. Where the photos saw the material, the table follows them: each node moves by the
 //     weighted mean of the residuals of the samples around it, shrunk by the prior's
 //     correction weight (a node with little data keeps the prior's value).
@@ -28,6 +31,7 @@ struct Observation {
   brdf::Vec3 l = brdf::Vec3::UnitZ(), v = brdf::Vec3::UnitZ();
   brdf::Rgb f = brdf::Rgb::Zero();
   double weight = 1;
+  bool upper_bound = false;  // f is the largest the material can be there (not a value)
 };
 
 struct PriorFitOptions {
@@ -41,10 +45,12 @@ struct PriorFitResult {
   std::array<Eigen::VectorXd, 3> coefficients;
   double misfit = 0;  // step 3, the worst channel
   bool outside_prior = false;
-  int observations = 0;
+  int observations = 0;  // values, not bounds
+  int bounds = 0;
+  int bounds_active = 0;  // bounds the solution presses against (worst channel)
 };
 
-// Throws brdfrig::Error when there is no observation with positive weight.
+// Throws brdfrig::Error when there is no value (not bound) with positive weight.
 PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observation>& observations,
                         const PriorFitOptions& options = {});
 

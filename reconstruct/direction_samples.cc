@@ -13,13 +13,15 @@ struct Pixel {
   brdf::Vec3 l, v;
   std::array<double, 3> f;
   std::array<double, 3> radiance;  // as merged, before the radiometry
+  std::array<double, 3> bound;     // f at the noise floor's radiance
   double theta_h, theta_d;
 };
 
-// Where the blocks go: the samples, and the pixels of blocks below the noise floor.
+// Where the blocks go: the samples, and the bounds of blocks below the noise floor.
 struct BlockOutput {
   double noise_floor = 0;
   std::vector<DirectionSample> samples;
+  std::vector<DirectionSample> bounds;
   int pixels_below_noise_floor = 0;
 };
 
@@ -42,10 +44,6 @@ bool BelowNoiseFloor(const std::vector<const Pixel*>& pixels, double noise_floor
 
 void Emit(const std::vector<const Pixel*>& pixels, bool below_noise_floor, BlockOutput* out) {
   if (pixels.empty()) return;
-  if (below_noise_floor) {
-    out->pixels_below_noise_floor += static_cast<int>(pixels.size());
-    return;
-  }
   const double n = static_cast<double>(pixels.size());
   DirectionSample s;
   s.l.setZero();
@@ -53,13 +51,18 @@ void Emit(const std::vector<const Pixel*>& pixels, bool below_noise_floor, Block
   for (const Pixel* p : pixels) {
     s.l += p->l;
     s.v += p->v;
-    for (int c = 0; c < 3; ++c) s.f[c] += p->f[c];
+    for (int c = 0; c < 3; ++c) s.f[c] += below_noise_floor ? p->bound[c] : p->f[c];
   }
   s.l.normalize();
   s.v.normalize();
   for (double& f : s.f) f /= n;
   s.weight = n;
-  out->samples.push_back(s);
+  if (below_noise_floor) {
+    out->pixels_below_noise_floor += static_cast<int>(pixels.size());
+    out->bounds.push_back(s);
+  } else {
+    out->samples.push_back(s);
+  }
 }
 
 // Emits the block as one sample, or splits it into four while its angular spans are too wide.
@@ -176,6 +179,8 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
             // B,G,R image → R,G,B material channels.
             pixel.f = {value[2] / (k[2] * e), value[1] / (k[1] * e), value[0] / (k[0] * e)};
             pixel.radiance = {value[2], value[1], value[0]};
+            pixel.bound = {noise_floor / (k[2] * e), noise_floor / (k[1] * e),
+                           noise_floor / (k[0] * e)};
             const HalfAngles angles = HalfAnglesOf(pixel.l, pixel.v);
             pixel.theta_h = angles.theta_h;
             pixel.theta_d = angles.theta_d;
@@ -196,6 +201,7 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
   DirectionSamples out;
   for (std::size_t r = 0; r < rows.size(); ++r) {
     out.samples.insert(out.samples.end(), rows[r].samples.begin(), rows[r].samples.end());
+    out.bounds.insert(out.bounds.end(), rows[r].bounds.begin(), rows[r].bounds.end());
     out.pixels_used += used[r] - rows[r].pixels_below_noise_floor;
     out.pixels_below_noise_floor += rows[r].pixels_below_noise_floor;
   }

@@ -45,6 +45,11 @@ struct DirectionSample {
 struct DirectionSamples {
   int position = 0;  // capture position index
   std::vector<DirectionSample> samples;
+  // Blocks below the noise floor, kept as upper bounds: f is the BRDF the block would have at
+  // the floor's radiance, so the material is darker than that there. A black material seen away
+  // from its highlight says only this, and it is still worth saying: without it the prior fills
+  // those directions with what brighter training materials do.
+  std::vector<DirectionSample> bounds;
   int pixels_used = 0;
   int pixels_below_noise_floor = 0;         // in blocks left out as darker than the noise floor
   double theta_h_min = 0, theta_h_max = 0;  // over the samples (radians)
@@ -59,9 +64,10 @@ HalfAngles HalfAnglesOf(const brdf::Vec3& l, const brdf::Vec3& v);
 
 // Same sample region, validity and radiometry as ExtractSamples (sample_options.edge_margin).
 // A block whose mean radiance, in its brightest channel, is below `noise_floor`
-// (HdrImage::noise_floor; 0 keeps every block) is left out: what it holds is mostly clipped read
-// noise, which reads as a material several times brighter than a dark one really is. The fits
-// then take that region from the rest (the prior, the compact forms' shape). The floor is
+// (HdrImage::noise_floor; 0 keeps every block) is not a sample: what it holds is mostly clipped
+// read noise, which reads as a material several times brighter than a dark one really is. It
+// becomes a bound instead (DirectionSamples::bounds), which the prior rung uses; the other fits
+// take that region from their form's shape. The floor is
 // judged on blocks of at least 64 pixels (smaller ones take their enclosing block's verdict),
 // so that it does not select a small block's upward noise.
 DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat& valid,

@@ -67,13 +67,18 @@ brdf::Material FitPriorRung(const std::vector<const PositionSamples*>& positions
   std::vector<prior::Observation> observations;
   nlohmann::json used = nlohmann::json::array();
   for (const PositionSamples* position : positions) {
+    // Each position weighs the same, its pixels alike whether they gave values or bounds.
+    const DirectionSamples& d = position->directions;
     double total = 0;
-    for (const DirectionSample& s : position->directions.samples) total += s.weight;
+    for (const DirectionSample& s : d.samples) total += s.weight;
+    for (const DirectionSample& s : d.bounds) total += s.weight;
     if (!(total > 0)) continue;
     used.push_back(position->index);
-    for (const DirectionSample& s : position->directions.samples) {
-      observations.push_back(
-          {s.l, s.v, brdf::Rgb(s.f[0], s.f[1], s.f[2]), s.weight * 1000.0 / total});
+    for (const auto* kind : {&d.samples, &d.bounds}) {
+      for (const DirectionSample& s : *kind) {
+        observations.push_back({s.l, s.v, brdf::Rgb(s.f[0], s.f[1], s.f[2]),
+                                s.weight * 1000.0 / total, kind == &d.bounds});
+      }
     }
   }
   const prior::PriorFitResult fit = prior::FitPrior(p, observations, options.fit);
@@ -85,6 +90,8 @@ brdf::Material FitPriorRung(const std::vector<const PositionSamples*>& positions
                   {"prior_training_materials", p.training.size()},
                   {"prior_components", p.Components()},
                   {"observations", fit.observations},
+                  {"bounds", fit.bounds},
+                  {"bounds_active", fit.bounds_active},
                   {"misfit", fit.misfit},
                   {"misfit_limit", options.fit.misfit_limit},
                   {"outside_prior", fit.outside_prior},

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -42,16 +43,20 @@ double TableRms(const brdf::TableValues& a, const brdf::TableValues& b) {
   return std::sqrt(sum / n);
 }
 
-// Observations of a table at every node (dense data) or only within `max_theta_h`.
+// Observations of a table at every node (dense data) or only within `max_theta_h` (beyond
+// `min_theta_h`, and within `max_theta_d`, when given).
 std::vector<Observation> Observe(const brdf::TableValues& truth, const brdf::RusinkiewiczGrid& g,
-                                 double max_theta_h) {
+                                 double max_theta_h, double min_theta_h = -1,
+                                 double max_theta_d = M_PI) {
   std::vector<Observation> out;
   const brdf::RusinkiewiczTable table(g, truth);
   for (int ih = 0; ih < g.theta_h; ++ih) {
     for (int id = 0; id < g.theta_d; ++id) {
       for (int ip = 0; ip < g.phi_d; ++ip) {
         const brdf::HalfDiffAngles a = brdf::NodeAngles(g, ih, id, ip);
-        if (a.theta_h > max_theta_h) continue;
+        if (a.theta_h > max_theta_h || a.theta_h <= min_theta_h || a.theta_d > max_theta_d) {
+          continue;
+        }
         Observation o;
         brdf::FromHalfDiffAngles(a, &o.l, &o.v);
         if (o.l.z() <= 0.01 || o.v.z() <= 0.01) continue;
@@ -118,6 +123,54 @@ TEST(MeasuredPrior, CorrectionMovesTheTableTowardsTheSamplesWhereTheyAre) {
   };
   EXPECT_LT(error_at_samples(with.table), 0.5 * error_at_samples(without.table))
       << error_at_samples(with.table) << " vs " << error_at_samples(without.table);
+}
+
+// A black mirror photographed away from its highlight is darker than the photos' noise floor:
+// those directions give bounds, not values. Without them the prior fills the directions with
+// what brighter training materials do; with them the fit stays below every bound it can.
+TEST(MeasuredPrior, UpperBoundsKeepADarkMaterialDarkWherePhotosSawOnlyNoise) {
+  PriorBuildOptions options = SmallOptions();
+  options.noise_sigma = 1;
+  const auto& materials = Set().materials;
+  const auto it = std::find_if(materials.begin(), materials.end(), [](const TrainingMaterial& m) {
+    return m.name == "black-obsidian";
+  });
+  ASSERT_NE(it, materials.end());
+  const int index = static_cast<int>(it - materials.begin());
+  const MeasuredPrior p = BuildPrior(Set(), options, index);
+  const brdf::TableValues& truth = Set().tables[index];
+  std::vector<Observation> seen = Observe(truth, p.grid, 0.1, -1, 0.4);
+  std::vector<Observation> bounds = Observe(truth, p.grid, M_PI / 2, 0.3);
+  for (Observation& o : bounds) {
+    o.f *= 1.2;  // a floor just above the truth
+    o.upper_bound = true;
+  }
+  const PriorFitResult without = FitPrior(p, seen, {});
+  std::vector<Observation> both = seen;
+  both.insert(both.end(), bounds.begin(), bounds.end());
+  const PriorFitResult with = FitPrior(p, both, {});
+  EXPECT_EQ(with.observations, without.observations);
+  EXPECT_EQ(with.bounds, static_cast<int>(bounds.size()));
+  EXPECT_GT(with.bounds_active, 0);
+  // How far, in q, a fit's table rises above the bounds, as an RMS over all of them.
+  const auto excess = [&](const PriorFitResult& fit) {
+    const brdf::RusinkiewiczTable t(p.grid, fit.table);
+    double sum = 0;
+    for (const Observation& o : bounds) {
+      const brdf::Rgb f = t.EvalLocal(o.l, o.v);
+      const double c = brdf::CosineProduct(p.grid, o.l, o.v);
+      for (int ch = 0; ch < 3; ++ch) {
+        sum += std::pow(
+            std::max(0.0, brdf::MapValue(p.grid, f[ch], c) - brdf::MapValue(p.grid, o.f[ch], c)),
+            2);
+      }
+    }
+    return std::sqrt(sum / (3.0 * bounds.size()));
+  };
+  EXPECT_GT(excess(without), 0.5) << "the test's bounds do not bind: " << excess(without);
+  EXPECT_LT(excess(with), 0.3 * excess(without)) << excess(with) << " vs " << excess(without);
+  EXPECT_LT(TableRms(with.table, truth), 0.7 * TableRms(without.table, truth))
+      << TableRms(with.table, truth) << " vs " << TableRms(without.table, truth);
 }
 
 TEST(MeasuredPrior, TrainingMaterialFromDenseDataIsAlmostExact) {

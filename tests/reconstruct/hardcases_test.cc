@@ -2,6 +2,7 @@
 // that the diagnostics say what the data cannot support, and accuracy where the data allow.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 
 #include "common/atomic_file.h"
 #include "common/exr_io.h"
+#include "reconstruct/measure_position.h"
 #include "reconstruct/pipeline.h"
 #include "tests/reconstruct/capture_fixture.h"
 
@@ -112,6 +114,36 @@ TEST(HardCases, ASampleBelowTheNoiseFloorEverywhereIsAnErrorNamingTheFloorAndThe
       EXPECT_NE(what.find("Lengthen the bracket"), std::string::npos) << what;
     }
   }
+}
+
+// What such a capture still says: the material is darker than the floor. Each block below it
+// becomes an upper bound on the BRDF (the prior rung's), which must hold for the true one and
+// account for every pixel it stands for.
+TEST(HardCases, BlocksBelowTheNoiseFloorBecomeBoundsAboveTheTrueBrdf) {
+  SceneSpec spec = HardCase();
+  spec.effects = kRealistic;
+  const double albedo = 0.00005;
+  spec.brdf = "{model: lambert, albedo: [0.00005, 0.00005, 0.00005]}";
+  spec.positions = "[{camera_arm: 20, light_arm: -20}]";
+  const CaptureSet capture = SimulateCapture(TempDir("bounds"), spec);
+  ASSERT_EQ(capture.positions.size(), 1u);
+  MeasureState state;
+  const MeasuredPosition m =
+      MeasurePosition(capture.positions[0], capture.nominal, MeasureOptions{}, &state);
+  EXPECT_TRUE(m.directions.samples.empty());
+  ASSERT_FALSE(m.directions.bounds.empty());
+  double pixels = 0, loosest = 0;
+  for (const DirectionSample& b : m.directions.bounds) {
+    pixels += b.weight;
+    for (const double f : b.f) {
+      EXPECT_GT(f, albedo / M_PI);
+      loosest = std::max(loosest, f / (albedo / M_PI));
+    }
+  }
+  EXPECT_EQ(pixels, m.directions.pixels_below_noise_floor);
+  // The floor is a few read-noise sigmas, far above this material but not unboundedly: a bound
+  // a million times the truth would be a units error, not a floor.
+  EXPECT_LT(loosest, 1e4);
 }
 
 TEST(HardCases, APositionWhoseWholeSampleIsBelowTheNoiseFloorIsDegraded) {
