@@ -13,7 +13,7 @@ struct Pixel {
   brdf::Vec3 l, v;
   std::array<double, 3> f;
   std::array<double, 3> radiance;  // as merged, before the radiometry
-  std::array<double, 3> bound;     // f at the noise floor's radiance
+  std::array<double, 3> floor_f;   // f at the noise floor's radiance
   double theta_h, theta_d;
 };
 
@@ -48,16 +48,24 @@ void Emit(const std::vector<const Pixel*>& pixels, bool below_noise_floor, Block
   DirectionSample s;
   s.l.setZero();
   s.v.setZero();
+  std::array<double, 3> floor_f{};
   for (const Pixel* p : pixels) {
     s.l += p->l;
     s.v += p->v;
-    for (int c = 0; c < 3; ++c) s.f[c] += below_noise_floor ? p->bound[c] : p->f[c];
+    for (int c = 0; c < 3; ++c) {
+      s.f[c] += p->f[c];
+      floor_f[c] += p->floor_f[c];
+    }
   }
   s.l.normalize();
   s.v.normalize();
   for (double& f : s.f) f /= n;
   s.weight = n;
   if (below_noise_floor) {
+    // The bound: the block's mean plus two standard errors of its read noise (the floor is two
+    // sigmas, so floor / sqrt(n)). Clipping the noise at zero only raises the mean, so the
+    // bound holds for photos written with or without a black level.
+    for (int c = 0; c < 3; ++c) s.f[c] = std::max(s.f[c], 0.0) + floor_f[c] / n / std::sqrt(n);
     out->pixels_below_noise_floor += static_cast<int>(pixels.size());
     out->bounds.push_back(s);
   } else {
@@ -179,8 +187,8 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
             // B,G,R image → R,G,B material channels.
             pixel.f = {value[2] / (k[2] * e), value[1] / (k[1] * e), value[0] / (k[0] * e)};
             pixel.radiance = {value[2], value[1], value[0]};
-            pixel.bound = {noise_floor / (k[2] * e), noise_floor / (k[1] * e),
-                           noise_floor / (k[0] * e)};
+            pixel.floor_f = {noise_floor / (k[2] * e), noise_floor / (k[1] * e),
+                             noise_floor / (k[0] * e)};
             const HalfAngles angles = HalfAnglesOf(pixel.l, pixel.v);
             pixel.theta_h = angles.theta_h;
             pixel.theta_d = angles.theta_d;
