@@ -45,8 +45,9 @@ struct DirectionSample {
 struct DirectionSamples {
   int position = 0;  // capture position index
   std::vector<DirectionSample> samples;
-  // Blocks below the noise floor, kept as upper bounds: f is the BRDF the block would have at
-  // the floor's radiance, so the material is darker than that there. A black material seen away
+  // Blocks below the noise floor, kept as upper bounds: f is the block's mean plus two standard
+  // errors of its read noise (the floor's BRDF over sqrt(pixels)), and the material is darker
+  // than that there. A black material seen away
   // from its highlight says only this, and it is still worth saying: without it the prior fills
   // those directions with what brighter training materials do.
   std::vector<DirectionSample> bounds;
