@@ -8,7 +8,7 @@
 //
 //   bench_prior_study [--materials a,b,...] [--counts 4,6,8,12] [--components K]
 //                     [--noise SIGMA] [--design-noise SIGMA] [--correction W] [--loo-design]
-//                     [--epsilon E] [--cos-floor C]
+//                     [--epsilon E] [--cos-floor C] [--bandwidth H]
 //                     [--no-compact]
 //                     [--rig-changes] [--objective prior|coverage]
 // --design-noise: the noise level of the prior the plan is designed under (default: --noise,
@@ -106,6 +106,7 @@ int main(int argc, char** argv) {
   prior::PriorBuildOptions build;
   bool loo_design = false, compact = true, rig_changes = false;
   double design_noise = NAN;
+  prior::PriorFitOptions fit;
   std::string objective = "prior";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -123,6 +124,8 @@ int main(int argc, char** argv) {
       design_noise = std::stod(next());
     } else if (a == "--correction") {
       build.correction_weight = std::stod(next());
+    } else if (a == "--bandwidth") {
+      fit.bandwidth = std::stod(next());
     } else if (a == "--epsilon") {
       build.grid.epsilon = std::stod(next());
     } else if (a == "--cos-floor") {
@@ -151,11 +154,12 @@ int main(int argc, char** argv) {
   const prior::MeasuredPrior full = prior::BuildPrior(set, design_build);
   std::printf(
       "prior study: %zu materials, leave-one-material-out priors (%d components, noise "
-      "%.3g, correction %.3g, epsilon %.3g, cos floor %.3g), noise-free samples at the plan's "
+      "%.3g, correction %.3g, epsilon %.3g, cos floor %.3g, bandwidth %.3g), noise-free samples at "
+      "the plan's "
       "directions, %s plans designed with noise %.3g\n",
       names.size(), full.Components(), build.noise_sigma, build.correction_weight,
-      build.grid.epsilon, build.grid.cos_floor, loo_design ? "left-out" : "all-material",
-      design_build.noise_sigma);
+      build.grid.epsilon, build.grid.cos_floor, fit.bandwidth,
+      loo_design ? "left-out" : "all-material", design_build.noise_sigma);
   std::vector<RigVariant> variants = {{"default rig", rig}};
   if (rig_changes) variants = RigChanges(rig);
   for (const RigVariant& variant : variants) {
@@ -193,6 +197,7 @@ int main(int argc, char** argv) {
         for (const auto& p : positions) all.push_back(&p);
         reconstruct::LadderOptions options;
         options.prior.prior = &loo;
+        options.prior.fit = fit;
         const brdf::Material pm =
             reconstruct::FitRung(brdf::ModelKind::kPrior, all, options, false);
         const Judged jp = Judge(truth, *pm.Model());

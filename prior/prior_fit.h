@@ -2,9 +2,11 @@
 // photos saw the material, the prior fills in the rest.
 //
 //  1. Maximum a posteriori coefficients, per channel: minimise
-//        Σ_o w_o (q_o − μ(x_o) − b(x_o)·c)² / σ² + Σ_k c_k² / s_k²
+//        Σ_o w_o (q_o − μ(x_o) − b(x_o)·c)² / σ² + (c − m)ᵀ P (c − m)
 //     (q_o the sample's mapped value, μ and b the mean and components interpolated at its
-//     coordinates, σ the prior's noise level, s_k² the coefficients' variances).
+//     coordinates, σ the prior's noise level). The coefficients' prior (m, P) is local to the
+//     training channels the data resemble (PriorFitOptions::bandwidth); with bandwidth 0 it is
+//     m = 0, P = diag(1/s_k²), s_k² the coefficients' variances over the training set.
 //     An observation may be an upper bound (a region darker than the photos' noise floor):
 //     it adds the same term only while the fit lies above it, a one-sided penalty, solved by
 //     re-solving with the violated bounds as observations until that set stops changing.
@@ -37,6 +39,10 @@ struct Observation {
 struct PriorFitOptions {
   double misfit_limit = 0.5;  // residual RMS in q above which the material is outside the prior
   bool correct = true;        // step 2
+  // The prior of step 1. > 0: local to the training channels the data resemble, each a
+  // Gaussian of this width in units of the coefficients' spread over the training set (1: the
+  // best of 0.2–1.4 left one material out, docs/prior.md); 0: one Gaussian over all of them.
+  double bandwidth = 1;
   void Validate() const;
 };
 
@@ -48,6 +54,9 @@ struct PriorFitResult {
   int observations = 0;  // values, not bounds
   int bounds = 0;
   int bounds_active = 0;  // bounds the solution presses against (worst channel)
+  // With a local prior: per channel, each training channel's share of it (rows as the prior's
+  // training_coefficients: material-major, RGB); empty with bandwidth 0.
+  std::array<Eigen::VectorXd, 3> neighbour_weights;
 };
 
 // Throws brdfrig::Error when there is no value (not bound) with positive weight.

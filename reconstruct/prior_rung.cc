@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "common/angles.h"
 #include "common/error.h"
@@ -58,6 +59,28 @@ double LimitTableEnergy(brdf::Material* m) {
   return largest;
 }
 
+// The training materials the local prior leaned on most (their share averaged over the three
+// channels), largest first: what the fit says the sample is like.
+nlohmann::json Resembles(const prior::MeasuredPrior& p, const prior::PriorFitResult& fit) {
+  nlohmann::json out = nlohmann::json::array();
+  if (fit.neighbour_weights[0].size() == 0) return out;
+  std::vector<std::pair<double, std::size_t>> share(p.training.size());
+  for (std::size_t m = 0; m < p.training.size(); ++m) {
+    share[m] = {0.0, m};
+    for (int ch = 0; ch < 3; ++ch) {  // any of its channels may resemble any of ours
+      share[m].first +=
+          fit.neighbour_weights[ch].segment(static_cast<Eigen::Index>(3 * m), 3).sum() / 3;
+    }
+  }
+  std::sort(share.begin(), share.end(), std::greater<>());
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, share.size()); ++i) {
+    if (share[i].first < 0.01) break;
+    out.push_back({{"material", p.training[share[i].second].name},
+                   {"share", std::round(share[i].first * 1000) / 1000}});
+  }
+  return out;
+}
+
 }  // namespace
 
 brdf::Material FitPriorRung(const std::vector<const PositionSamples*>& positions,
@@ -92,6 +115,8 @@ brdf::Material FitPriorRung(const std::vector<const PositionSamples*>& positions
                   {"observations", fit.observations},
                   {"bounds", fit.bounds},
                   {"bounds_active", fit.bounds_active},
+                  {"prior_bandwidth", options.fit.bandwidth},
+                  {"resembles", Resembles(p, fit)},
                   {"misfit", fit.misfit},
                   {"misfit_limit", options.fit.misfit_limit},
                   {"outside_prior", fit.outside_prior},
