@@ -116,6 +116,28 @@ TEST(MeasuredPrior, LocalPriorFillsUnseenDirectionsBetterThanOneGaussian) {
   EXPECT_LT(local_error, 0.9 * global_error) << local_error << " vs " << global_error;
 }
 
+// The local prior's weights are the evidence of each training channel: a training material
+// seen over the whole hemisphere is recognised: its own three channels (a grey material's
+// channels are alike) carry most of each channel's weight, which sums to one.
+TEST(MeasuredPrior, LocalPriorLeansOnTheTrainingMaterialTheDataCameFrom) {
+  PriorBuildOptions options = SmallOptions();
+  options.noise_sigma = 1;
+  const MeasuredPrior p = BuildPrior(Set(), options);
+  for (const int m : {7, 33, 61}) {
+    const PriorFitResult fit = FitPrior(p, Observe(Set().tables[m], p.grid, M_PI / 2), {});
+    for (int ch = 0; ch < 3; ++ch) {
+      const Eigen::VectorXd& w = fit.neighbour_weights[ch];
+      ASSERT_EQ(w.size(), 3 * 80);
+      EXPECT_NEAR(w.sum(), 1, 1e-9);
+      EXPECT_GT(w.segment(3 * m, 3).sum(), 0.5) << Set().materials[m].name << " channel " << ch;
+    }
+  }
+  PriorFitOptions global;
+  global.bandwidth = 0;
+  EXPECT_EQ(FitPrior(p, Observe(Set().tables[7], p.grid, 0.5), global).neighbour_weights[0].size(),
+            0);
+}
+
 // Step 2 of the fit: where samples are, the table follows them more closely than the prior's
 // components alone can.
 TEST(MeasuredPrior, CorrectionMovesTheTableTowardsTheSamplesWhereTheyAre) {
