@@ -1,7 +1,7 @@
 // A prior over isotropic BRDFs learned from measured materials: the principal components of
 // their Rusinkiewicz tables (brdf/rusinkiewicz_table.h) in the mapped variable
-// q = ln(f·c + ε), with a Gaussian prior on the components' coefficients (their variances over
-// the training materials). Each colour channel of each training material is one sample
+// q = ln(f·c + ε), with the components' coefficients of every training channel and their
+// variances (the fit's prior is built from both, prior_fit.h). Each colour channel of each training material is one sample
 // (channels stacked): a channel is one curve of the same physics, and three times the samples
 // estimate the covariance better than one joint RGB vector would.
 //
