@@ -1,9 +1,9 @@
 // A prior over isotropic BRDFs learned from measured materials: the principal components of
 // their Rusinkiewicz tables (brdf/rusinkiewicz_table.h) in the mapped variable
 // q = ln(f·c + ε), with the components' coefficients of every training channel and their
-// variances (the fit's prior is built from both, prior_fit.h). Each colour channel of each training material is one sample
-// (channels stacked): a channel is one curve of the same physics, and three times the samples
-// estimate the covariance better than one joint RGB vector would.
+// variances (the fit's prior is built from both, prior_fit.h). Each colour channel of each training
+// material is one sample (channels stacked): a channel is one curve of the same physics, and three
+// times the samples estimate the covariance better than one joint RGB vector would.
 //
 // The file (data/priors/*.prior) is versioned and self-describing: a first line
 // "brdfrig-prior", a JSON header (format, version, name, grid, noise level, training list with
