@@ -154,9 +154,8 @@ int main(int argc, char** argv) {
   const prior::MeasuredPrior full = prior::BuildPrior(set, design_build);
   std::printf(
       "prior study: %zu materials, leave-one-material-out priors (%d components, noise "
-      "%.3g, correction %.3g, epsilon %.3g, cos floor %.3g, bandwidth %.3g), noise-free samples at "
-      "the plan's "
-      "directions, %s plans designed with noise %.3g\n",
+      "%.3g, correction %.3g, epsilon %.3g, cos floor %.3g, bandwidth %.3g), noise-free samples "
+      "at the plan's directions, %s plans designed with noise %.3g\n",
       names.size(), full.Components(), build.noise_sigma, build.correction_weight,
       build.grid.epsilon, build.grid.cos_floor, fit.bandwidth,
       loo_design ? "left-out" : "all-material", design_build.noise_sigma);
