@@ -5,13 +5,14 @@
 //                        [--measured-dir DIR] [--only SUBSTRING] [--docs DIR]
 //                        [--plan mirror|designed] [--positions N] [--model KIND]
 //                        [--materials NAME,NAME,...] [--name NAME] [--albedo-goal X]
-//                        [--brdf-only] [--keep-materials DIR]
+//                        [--brdf-only] [--keep-materials DIR] [--jobs N]
 //   bench_evaluate_study photo-count-rungs [--counts 1,2,3,...] [--materials ...] [--set ...]
 // Prints markdown tables and writes SVG plots into DIR (default: docs/figures); the hemisphere
 // study writes DOCS/NAME.md and DOCS/figures/NAME.svg (default DOCS: docs/, NAME:
 // study_hemisphere; photo-count-rungs: photo_count_study). Without --model the hemisphere study
 // judges every rung of the ladder side by side; --model seed is the issue-13 baseline.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -23,12 +24,14 @@
 #include <vector>
 
 #include <map>
+#include <mutex>
 #include <optional>
 #include "brdf/nbrdf_library.h"
 #include "common/angles.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/format.h"
+#include "common/parallel.h"
 #include "evaluate/report.h"
 #include "evaluate/svg_plot.h"
 #include "jobs/material_study.h"
@@ -210,6 +213,7 @@ struct HemisphereArgs {
   std::vector<std::string> materials;  // exact names (empty: the whole set)
   std::vector<int> counts = {1, 2, 3, 4, 6, 8, 12};
   int positions = 6;
+  int jobs = 1;  // materials judged at once (each mostly on one core); the table keeps the order
   bool brdf_only = false;                // sphere test and BRDF figures only (no held-out views)
   std::filesystem::path keep_materials;  // keep each reconstructed material.json here
   int width = 400, height = 300;
@@ -272,12 +276,23 @@ void Hemisphere(const HemisphereArgs& a) {
   std::printf("\n## Hemisphere study (%zu materials, %dx%d, supersampling %d, plan %s, %s)\n\n",
               materials.size(), a.width, a.height, options.supersampling, plan.name.c_str(),
               a.model.empty() ? "every rung" : a.model.c_str());
-  std::vector<jobs::MaterialStudyRow> rows;
-  for (const auto& material : materials) {
-    rows.push_back(jobs::RunMaterialStudyPoint(material, plan, options));
-    std::printf("%s (%.1f s)\n", rows.back().Report().c_str(), rows.back().wall_s);
-    std::fflush(stdout);
-  }
+  // Made here, before any worker: a scratch directory removes its parent only when it made it.
+  std::filesystem::create_directories(options.work_dir);
+  std::vector<jobs::MaterialStudyRow> rows(materials.size());
+  // Each worker takes the next material not taken yet: materials differ in cost by 2x and more.
+  std::atomic<std::size_t> next{0};
+  std::mutex print;
+  ParallelFor(
+      static_cast<std::size_t>(a.jobs),
+      [&](std::size_t, std::size_t) {
+        for (std::size_t i = next++; i < materials.size(); i = next++) {
+          rows[i] = jobs::RunMaterialStudyPoint(materials[i], plan, options);
+          const std::lock_guard lock(print);
+          std::printf("%s (%.1f s)\n", rows[i].Report().c_str(), rows[i].wall_s);
+          std::fflush(stdout);
+        }
+      },
+      a.jobs);
   const double goal = a.albedo_goal > 0 ? a.albedo_goal : (a.set == "analytic" ? 0.05 : 0.10);
   const std::string table =
       (a.model.empty() ? jobs::LadderMarkdown(rows, plan, goal) : jobs::MarkdownTable(rows, plan)) +
@@ -460,6 +475,9 @@ int main(int argc, char** argv) {
         if (h.plan != "mirror" && h.plan != "designed") {
           throw OptionsError("--plan " + h.plan + ": must be mirror or designed");
         }
+      } else if (std::strcmp(argv[i], "--jobs") == 0 && more) {
+        h.jobs = std::stoi(argv[++i]);
+        if (h.jobs < 1) throw OptionsError("--jobs " + std::to_string(h.jobs) + ": must be >= 1");
       } else if (std::strcmp(argv[i], "--positions") == 0 && more) {
         h.positions = std::stoi(argv[++i]);
       } else if (std::strcmp(argv[i], "--counts") == 0 && more) {

@@ -149,6 +149,9 @@ std::string MaterialStudyRow::Report() const {
 
 const prior::MeasuredPrior* LeaveOneOutPriors::For(const StudyMaterial& material) {
   const prior::PriorBuildOptions build = prior::OptionsOf(prior::DefaultPrior());
+  // One lock for reading the training set and building: builds are seconds against minutes
+  // of capture and judging, and a std::map's elements stay where they are as it grows.
+  const std::lock_guard lock(mutex_);
   if (!training_) training_ = prior::ReadTrainingSet({brdf::NbrdfDirectory()}, build);
   for (std::size_t i = 0; i < training_->materials.size(); ++i) {
     if (material.brdf_yaml != "{model: nbrdf, name: " + training_->materials[i].name + "}") {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,13 +68,15 @@ struct MaterialStudyOptions {
 
 // Judges a shipped measured material by a prior that was never trained on it: the shipped
 // prior's settings rebuilt from every shipped material but that one, on first use and kept.
-// For MaterialStudyOptions::prior_for; not thread-safe.
+// For MaterialStudyOptions::prior_for; safe to call from several threads (a study that
+// judges materials in parallel), each prior built once.
 class LeaveOneOutPriors {
  public:
   // nullptr for a material that is not in the training set: the shipped prior never saw it.
   const prior::MeasuredPrior* For(const StudyMaterial& material);
 
  private:
+  std::mutex mutex_;
   std::optional<prior::TrainingSet> training_;
   std::map<std::string, prior::MeasuredPrior> built_;
 };
