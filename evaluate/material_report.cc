@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "common/format.h"
 #include "evaluate/display_image.h"
+#include "evaluate/sample_figures.h"
 
 namespace brdfrig::evaluate {
 namespace {
@@ -43,13 +44,15 @@ double NumberFromJson(const nlohmann::json& value) {
 
 std::vector<ElevationSummary> SummarizeByElevation(const std::vector<HeldOutResult>& views) {
   std::map<long, ElevationSummary> by;
+  std::map<long, std::vector<double>> normalized;
   for (const HeldOutResult& v : views) {
-    ElevationSummary& s = by[std::lround(Degrees(v.view.elevation) * 1000)];
+    const long key = std::lround(Degrees(v.view.elevation) * 1000);
+    ElevationSummary& s = by[key];
     s.elevation_deg = Degrees(v.view.elevation);
     ++s.views;
     s.whole_photo_psnr_db += v.whole_photo.psnr_db;
     s.sample_only_psnr_db += v.sample_only.psnr_db;
-    s.normalized_sample_psnr_db += v.normalized_sample.psnr_db;
+    normalized[key].push_back(v.normalized_sample.psnr_db);
     s.relative_rmse += v.relative_rmse;
   }
   std::vector<ElevationSummary> out;
@@ -57,7 +60,10 @@ std::vector<ElevationSummary> SummarizeByElevation(const std::vector<HeldOutResu
     const double n = s.views;
     s.whole_photo_psnr_db /= n;
     s.sample_only_psnr_db /= n;
-    s.normalized_sample_psnr_db /= n;
+    // Views where the truth is black have no normalized figure (evaluate/sample_figures.h).
+    const DefinedMean m = MeanOfDefined(normalized[key]);
+    s.normalized_sample_psnr_db = m.mean;
+    s.normalized_views = m.count;
     s.relative_rmse /= n;
     out.push_back(s);
   }
@@ -157,6 +163,7 @@ nlohmann::json FiguresJson(const MaterialFigures& f, const fs::path& report_dir)
            {"whole_photo_psnr_db", JsonNumber(s.whole_photo_psnr_db)},
            {"sample_only_psnr_db", JsonNumber(s.sample_only_psnr_db)},
            {"normalized_sample_psnr_db", JsonNumber(s.normalized_sample_psnr_db)},
+           {"normalized_views", s.normalized_views},
            {"relative_rmse", JsonNumber(s.relative_rmse)}});
     }
     out["held_out"] = held;

@@ -27,6 +27,7 @@ struct ElevationSummary {
   double elevation_deg = 0;
   int views = 0;
   double whole_photo_psnr_db = 0, sample_only_psnr_db = 0, normalized_sample_psnr_db = 0;
+  int normalized_views = 0;  // views with a defined normalized figure (the truth not black)
   double relative_rmse = 0;
 };
 std::vector<ElevationSummary> SummarizeByElevation(const std::vector<HeldOutResult>& views);

@@ -29,7 +29,7 @@ SampleFigures CompareSampleRadiance(const cv::Mat& reference, const cv::Mat& fit
                    values.end());
   SampleFigures out;
   out.peak = values[rank];
-  const double peak = out.peak > 0 ? out.peak : 1;  // a black sample: any scale keeps it defined
+  const double peak = out.peak > 0 ? out.peak : 1;  // black: the PSNR is set undefined below
   cv::Mat a(reference.size(), CV_32FC3), b(reference.size(), CV_32FC3);
   double se = 0, sq = 0;
   for (int y = 0; y < reference.rows; ++y) {
@@ -51,10 +51,23 @@ SampleFigures CompareSampleRadiance(const cv::Mat& reference, const cv::Mat& fit
   out.normalized_sample = Psnr(a, b, mask, 1.0,
                                "sample only, linear radiance / " + reference_name +
                                    "'s 99th percentile in the view, clamped, sRGB");
+  if (!(out.peak > 0)) out.normalized_sample.psnr_db = NAN;  // nothing to normalize by
   out.relative_rmse = sq > 0 ? std::sqrt(se / sq) : std::sqrt(se);
   out.relative_rmse_protocol = "sample only, linear radiance, RMS(fit - " + reference_name +
                                ") / RMS(" + reference_name + "), unclamped";
   return out;
+}
+
+DefinedMean MeanOfDefined(const std::vector<double>& values) {
+  DefinedMean m;
+  double sum = 0;
+  for (const double v : values) {
+    if (std::isnan(v)) continue;
+    sum += v;
+    ++m.count;
+  }
+  if (m.count > 0) m.mean = sum / m.count;
+  return m;
 }
 
 }  // namespace brdfrig::evaluate

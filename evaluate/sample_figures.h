@@ -6,10 +6,16 @@
 //                  pixels (channels pooled), clamped to [0, 1], sRGB-encoded, peak 1;
 //   relative RMSE — sqrt(mean (fit − reference)²) / sqrt(mean reference²) over the sample
 //                  pixels, linear and unclamped.
+// Where the reference is black over the sample (its 99th percentile is 0: a mirror seen away
+// from its highlight) there is nothing to normalize by, and the normalized PSNR is NaN
+// (undefined) rather than a figure on an arbitrary scale: means over views leave such views
+// out (MeanOfDefined) and say how many they kept. The absolute figures still judge the view.
 #pragma once
 
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "evaluate/image_metrics.h"
 
@@ -27,5 +33,12 @@ struct SampleFigures {
 // protocols ("truth", "photo"). Throws brdfrig::Error when the mask is empty.
 SampleFigures CompareSampleRadiance(const cv::Mat& reference, const cv::Mat& fit,
                                     const cv::Mat& mask, const std::string& reference_name);
+
+// Mean and count of the values that are not NaN (NaN and 0 when there are none).
+struct DefinedMean {
+  double mean = NAN;
+  int count = 0;
+};
+DefinedMean MeanOfDefined(const std::vector<double>& values);
 
 }  // namespace brdfrig::evaluate

@@ -5,6 +5,7 @@
 #include "common/format.h"
 #include "evaluate/display_image.h"
 #include "evaluate/material_report.h"
+#include "evaluate/sample_figures.h"
 
 namespace brdfrig::evaluate {
 namespace {
@@ -25,7 +26,8 @@ json ValidationPhotosJson(const std::vector<ValidationPhotoResult>& results,
                "evaluated per sample pixel with that pixel's measured light and view directions "
                "and the paper's radiometric scale"},
               {"positions", json::array()}};
-  double psnr_sum = 0, rmse_sum = 0;
+  std::vector<double> psnr;  // NaN where the photo is black over the sample
+  double rmse_sum = 0;
   int measured = 0;
   for (const ValidationPhotoResult& r : results) {
     json j = {{"position", r.position}, {"measured", r.measured}};
@@ -56,13 +58,13 @@ json ValidationPhotosJson(const std::vector<ValidationPhotoResult>& results,
                      {"render", stem + "_render.png"},
                      {"diff", stem + "_diff.png"}};
     }
-    psnr_sum += r.figures.normalized_sample.psnr_db;
+    psnr.push_back(r.figures.normalized_sample.psnr_db);
     rmse_sum += r.figures.relative_rmse;
     ++measured;
     out["positions"].push_back(j);
   }
   if (measured > 0) {
-    out["mean_normalized_sample_psnr_db"] = JsonNumber(psnr_sum / measured);
+    out["mean_normalized_sample_psnr_db"] = JsonNumber(MeanOfDefined(psnr).mean);
     out["mean_relative_rmse"] = JsonNumber(rmse_sum / measured);
   }
   return out;

@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/format.h"
 #include "coverage/designer.h"
+#include "evaluate/sample_figures.h"
 #include "evaluate/svg_plot.h"
 #include "prior/measured_prior.h"
 #include "sim/scene.h"
@@ -28,18 +29,23 @@ double Mean(const std::vector<double>& v) {
   return v.empty() ? 0 : sum / static_cast<double>(v.size());
 }
 
-// The headline figures of one judged fit.
+// The headline figures of one judged fit. The held-out figures are over the views whose
+// normalized figure is defined (the truth not black over the sample; `held_views` of them).
 void Headline(const evaluate::MaterialFigures& f, double* sphere_mean, double* sphere_worst,
-              double* held_mean, double* held_min, double* albedo) {
+              double* held_mean, double* held_min, int* held_views, double* albedo) {
   *sphere_mean = f.sphere.mean_psnr_db;
   *sphere_worst = f.sphere.worst_psnr_db;
-  *held_mean = 0;
-  *held_min = std::numeric_limits<double>::infinity();
+  std::vector<double> views;
   for (const evaluate::HeldOutResult& v : f.held_out) {
-    *held_mean += v.normalized_sample.psnr_db / static_cast<double>(f.held_out.size());
-    *held_min = std::min(*held_min, v.normalized_sample.psnr_db);
+    views.push_back(v.normalized_sample.psnr_db);
   }
-  if (f.held_out.empty()) *held_mean = *held_min = NAN;
+  const evaluate::DefinedMean held = evaluate::MeanOfDefined(views);
+  *held_mean = held.mean;
+  *held_views = held.count;
+  *held_min = NAN;
+  for (const double v : views) {
+    if (!std::isnan(v) && (std::isnan(*held_min) || v < *held_min)) *held_min = v;
+  }
   *albedo = 0;
   for (const evaluate::AlbedoAtAngle& a : f.brdf.albedo) {
     if (a.theta_in_deg <= 75) *albedo = std::max(*albedo, a.relative_error);
@@ -206,7 +212,7 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
   }
   row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Headline(row.result.figures, &row.sphere_mean_db, &row.sphere_worst_db, &row.held_out_mean_db,
-           &row.held_out_min_db, &row.albedo_error_0_75);
+           &row.held_out_min_db, &row.held_out_views, &row.albedo_error_0_75);
   if (row.result.gltf_sphere) {
     row.gltf_sphere_mean_db = row.result.gltf_sphere->mean_psnr_db;
     row.gltf_sphere_worst_db = row.result.gltf_sphere->worst_psnr_db;
@@ -225,8 +231,9 @@ MaterialStudyRow RunMaterialStudyPoint(const StudyMaterial& material, const Stud
     rung.fit_s = r.fit_seconds;
     rung.size_bytes = r.size_bytes;
     if (r.fitted) {
+      int views = 0;
       Headline(r.figures, &rung.sphere_mean_db, &rung.sphere_worst_db, &rung.held_out_mean_db,
-               &rung.held_out_min_db, &rung.albedo_error_0_75);
+               &rung.held_out_min_db, &views, &rung.albedo_error_0_75);
       rung.brdf_error = r.brdf_error;
       for (const evaluate::HeldOutResult& v : r.figures.held_out) {
         if (v.normalized_sample.psnr_db == rung.held_out_min_db) {
@@ -467,6 +474,19 @@ std::string LadderMarkdown(const std::vector<MaterialStudyRow>& rows, const Stud
           << r.size_bytes << " | " << Fixed(r.fit_s, 2) << " | " << Fixed(r.validation_score, 4)
           << " |\n";
     }
+  }
+  std::string black_views;
+  for (const MaterialStudyRow& row : rows) {
+    const int total = static_cast<int>(row.result.figures.held_out.size());
+    if (row.error.empty() && row.held_out_views < total) {
+      black_views += (black_views.empty() ? "" : ", ") + row.material.name + " " +
+                     std::to_string(total - row.held_out_views) + " of " + std::to_string(total);
+    }
+  }
+  if (!black_views.empty()) {
+    out << "\nHeld-out views left out of the held-out figures because the truth is black over the "
+           "sample there (nothing to normalize by; evaluate/sample_figures.h): "
+        << black_views << ".\n";
   }
   out << "\nSummary over materials (mean; worst material beside it). Albedo goal: relative "
          "error ≤ "

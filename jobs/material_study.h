@@ -104,8 +104,9 @@ struct MaterialStudyRow {
   double wall_s = 0;
   // Headline figures (from result.figures).
   double sphere_mean_db = 0, sphere_worst_db = 0;
-  double held_out_mean_db = 0, held_out_min_db = 0;  // normalized sample PSNR over all views
-  double albedo_error_0_75 = 0;                      // max relative error, 0°..75°
+  double held_out_mean_db = 0, held_out_min_db = 0;  // normalized sample PSNR over the views
+  int held_out_views = 0;  // views with a defined figure (the truth not black over the sample)
+  double albedo_error_0_75 = 0;  // max relative error, 0°..75°
   // With MaterialStudyOptions::every_rung: every rung (the headline figures above are the
   // chosen rung's), the index of validation's choice and of the best rung by sphere mean.
   std::vector<RungRow> rungs;
