@@ -415,7 +415,7 @@ RungSummary SummarizeRung(const std::vector<MaterialStudyRow>& rows, const std::
     if (r == nullptr || !r->fitted) continue;
     ++s.materials;
     sphere.push_back(r->sphere_mean_db);
-    if (std::isfinite(r->held_out_mean_db)) held.push_back(r->held_out_mean_db);
+    held.push_back(r->held_out_mean_db);
     albedo.push_back(r->albedo_error_0_75);
     brdf_error.push_back(r->brdf_error);
     size.push_back(static_cast<double>(r->size_bytes));
@@ -433,8 +433,11 @@ RungSummary SummarizeRung(const std::vector<MaterialStudyRow>& rows, const std::
     if (r->albedo_error_0_75 <= albedo_goal) ++s.albedo_within_goal;
   }
   s.sphere_mean_db = Mean(sphere);
-  s.held_out_mean_db = held.empty() ? NAN : Mean(held);
-  if (held.empty()) s.worst_held_out_min_db = NAN;
+  // A material without a defined held-out mean is left out of it, and the table says so.
+  const evaluate::DefinedMean held_out = evaluate::MeanOfDefined(held);
+  s.held_out_mean_db = held_out.mean;
+  s.held_out_materials = held_out.count;
+  if (held_out.count == 0) s.worst_held_out_min_db = NAN;
   s.albedo_error_mean = Mean(albedo);
   s.brdf_error_mean = Mean(brdf_error);
   s.size_bytes_mean = Mean(size);
@@ -504,11 +507,14 @@ std::string LadderMarkdown(const std::vector<MaterialStudyRow>& rows, const Stud
                                               : kind;
     out << "| " << name << " | " << s.materials << " | " << Fixed(s.sphere_mean_db, 1) << " | "
         << Fixed(s.worst_sphere_db, 1) << " (" << s.worst_sphere_material << ") | "
-        << Fixed(s.held_out_mean_db, 1) << " | " << Fixed(s.worst_held_out_min_db, 1) << " | "
-        << Fixed(s.albedo_error_mean, 3) << " | " << Fixed(s.worst_albedo_error, 3) << " ("
-        << s.worst_albedo_material << ") | " << s.albedo_within_goal << "/" << s.materials << " | "
-        << Fixed(s.brdf_error_mean, 3) << " | " << Fixed(s.size_bytes_mean, 0) << " | "
-        << Fixed(s.fit_s_mean, 2) << " |\n";
+        << Fixed(s.held_out_mean_db, 1)
+        << (s.held_out_materials > 0 && s.held_out_materials < s.materials
+                ? " (over " + std::to_string(s.held_out_materials) + ")"
+                : "")
+        << " | " << Fixed(s.worst_held_out_min_db, 1) << " | " << Fixed(s.albedo_error_mean, 3)
+        << " | " << Fixed(s.worst_albedo_error, 3) << " (" << s.worst_albedo_material << ") | "
+        << s.albedo_within_goal << "/" << s.materials << " | " << Fixed(s.brdf_error_mean, 3)
+        << " | " << Fixed(s.size_bytes_mean, 0) << " | " << Fixed(s.fit_s_mean, 2) << " |\n";
   }
   // Which rung validation chose and which was best, counted.
   std::map<std::string, int> chosen, best;

@@ -160,6 +160,7 @@ struct RungSummary {
   double sphere_mean_db = 0, worst_sphere_db = 0;
   std::string worst_sphere_material;
   double held_out_mean_db = 0, worst_held_out_min_db = 0;
+  int held_out_materials = 0;  // those with a defined held-out mean (not brdf_only, not all black)
   double albedo_error_mean = 0, worst_albedo_error = 0;
   std::string worst_albedo_material;
   int albedo_within_goal = 0;
