@@ -9,12 +9,16 @@
 //   bench_prior_study [--materials a,b,...] [--counts 4,6,8,12] [--components K]
 //                     [--noise SIGMA] [--design-noise SIGMA] [--correction W] [--loo-design]
 //                     [--epsilon E] [--cos-floor C] [--bandwidth H]
-//                     [--no-compact]
+//                     [--no-compact] [--held-out]
 //                     [--rig-changes] [--objective prior|coverage]
 // --design-noise: the noise level of the prior the plan is designed under (default: --noise,
 // as the shipped prior serves both), to tell what the plan and the fit each gain.
 // --epsilon, --cos-floor: the table's mapping q = ln(f·c + ε), c the product of the cosines,
 // each floored (brdf/rusinkiewicz_table.h), for every prior of the run.
+// --held-out: also the held-out photo views of the issue-14 protocol (400x300, elevations 20°,
+// 40°, 60°, 75° × light azimuths 0°, 45°, 90°, 180°; mean normalized sample PSNR over the views
+// whose truth is not black) for the prior rung, the true table and its projection: where the
+// held-out figure is lost (the plan, the prior, or the table itself). Needs headless GL.
 // --rig-changes: the 6-position design of the default rig and of the rig with one change (a
 // cut-out 1.5 times larger, the light at 0.6 of its distance, an extra axis turning the camera
 // about the normal), each with its leave-one-material-out figures.
@@ -39,7 +43,10 @@
 #include "common/yaml_reader.h"
 #include "coverage/designer.h"
 #include "evaluate/brdf_figures.h"
+#include "evaluate/held_out.h"
+#include "evaluate/sample_figures.h"
 #include "evaluate/sphere_test.h"
+#include "jobs/study.h"
 #include "prior/build_prior.h"
 #include "reconstruct/fit_ladder.h"
 
@@ -70,6 +77,30 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
   j.sphere_db = evaluate::SphereTest(truth, fit).mean_psnr_db;
   j.albedo_signed = evaluate::WorstAlbedoError(truth, fit);
   return j;
+}
+
+// Mean normalized sample PSNR of each fit over the held-out views of `truth_name` (NaN views,
+// where the truth is black, left out).
+std::vector<double> HeldOut(const std::string& truth_name,
+                            const std::vector<const brdf::Brdf*>& fits) {
+  jobs::StudySettings settings;
+  settings.width = 400;
+  settings.height = 300;
+  settings.sample_brdf = "{model: nbrdf, name: " + truth_name + "}";
+  const sim::Scene scene =
+      jobs::StudyScene(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml", settings);
+  std::vector<double> elevations, phis;
+  for (const double d : {20.0, 40.0, 60.0, 75.0}) elevations.push_back(Radians(d));
+  for (const double d : {0.0, 45.0, 90.0, 180.0}) phis.push_back(Radians(d));
+  const auto results =
+      evaluate::EvaluateHeldOutEach(scene, fits, evaluate::ElevationViews(elevations, phis));
+  std::vector<double> means;
+  for (const auto& views : results) {
+    std::vector<double> psnr;
+    for (const auto& v : views) psnr.push_back(v.normalized_sample.psnr_db);
+    means.push_back(evaluate::MeanOfDefined(psnr).mean);
+  }
+  return means;
 }
 
 struct RigVariant {
@@ -104,7 +135,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> names;
   std::vector<int> counts = {6};
   prior::PriorBuildOptions build;
-  bool loo_design = false, compact = true, rig_changes = false;
+  bool loo_design = false, compact = true, rig_changes = false, held_out = false;
   double design_noise = NAN;
   prior::PriorFitOptions fit;
   std::string objective = "prior";
@@ -132,6 +163,8 @@ int main(int argc, char** argv) {
       build.grid.cos_floor = std::stod(next());
     } else if (a == "--loo-design") {
       loo_design = true;
+    } else if (a == "--held-out") {
+      held_out = true;
     } else if (a == "--no-compact") {
       compact = false;
     } else if (a == "--objective") {
@@ -174,7 +207,9 @@ int main(int argc, char** argv) {
       std::printf("\n%d positions\n%-30s %8s %8s %8s %9s %8s %8s %7s %7s %7s %7s\n", count,
                   "material", "prior", "ggx", "micro", "albedo", "misfit", "outside", "table",
                   "albedo", "project", "albedo");
-      std::map<std::string, std::vector<double>> sphere;
+      if (held_out)
+        std::printf("%-30s %8s %8s %8s\n", "held-out (dB):", "prior", "table", "project");
+      std::map<std::string, std::vector<double>> sphere, held;
       std::vector<double> albedo;
       int outside = 0;
       for (const std::string& name : names) {
@@ -210,7 +245,8 @@ int main(int argc, char** argv) {
           values = loo.mean + loo.components * (loo.components.transpose() * centred);
           for (double& v : q) v = std::clamp(v, std::log(loo.grid.epsilon), 80.0);
         }
-        const Judged jj = Judge(truth, brdf::RusinkiewiczTable(loo.grid, table));
+        const brdf::RusinkiewiczTable projected(loo.grid, table);
+        const Judged jj = Judge(truth, projected);
         double ggx = NAN, micro = NAN;
         if (compact) {
           try {
@@ -234,7 +270,21 @@ int main(int argc, char** argv) {
                     name.c_str(), jp.sphere_db, ggx, micro, 100 * jp.albedo_signed,
                     pm.fit.value("misfit", NAN), out ? "yes" : "", jt.sphere_db,
                     100 * jt.albedo_signed, jj.sphere_db, 100 * jj.albedo_signed);
+        if (held_out) {
+          const brdf::RusinkiewiczTable true_table(loo.grid, brdf::TabulateBrdf(truth, loo.grid));
+          const auto fitted = pm.Model();
+          const std::vector<double> h = HeldOut(name, {fitted.get(), &true_table, &projected});
+          held["prior"].push_back(h[0]);
+          held["table"].push_back(h[1]);
+          held["project"].push_back(h[2]);
+          std::printf("%-30s %8.2f %8.2f %8.2f  (held-out)\n", "", h[0], h[1], h[2]);
+        }
         std::fflush(stdout);
+      }
+      for (const auto& [what, values] : held) {
+        const evaluate::DefinedMean m = evaluate::MeanOfDefined(values);
+        std::printf("%d positions, held-out %-8s mean %.2f dB (%d materials)\n", count,
+                    what.c_str(), m.mean, m.count);
       }
       for (const auto& [rung, values] : sphere) {
         double sum = 0, worst = INFINITY;
