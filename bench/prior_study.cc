@@ -7,12 +7,14 @@
 // material's covariance, the fit never its table).
 //
 //   bench_prior_study [--materials a,b,...] [--counts 4,6,8,12] [--components K]
-//                     [--noise SIGMA] [--design-noise SIGMA] [--correction W] [--loo-design]
+//                     [--noise SIGMA] [--design-noise SIGMA] [--design-components K]
+//                     [--correction W] [--loo-design]
 //                     [--epsilon E] [--cos-floor C] [--bandwidth H]
 //                     [--no-compact] [--held-out]
 //                     [--rig-changes] [--objective prior|coverage]
 // --design-noise: the noise level of the prior the plan is designed under (default: --noise,
 // as the shipped prior serves both), to tell what the plan and the fit each gain.
+// --design-components: the leading components the designer judges plans by (default 32).
 // --epsilon, --cos-floor: the table's mapping q = ln(f·c + ε), c the product of the cosines,
 // each floored (brdf/rusinkiewicz_table.h), for every prior of the run.
 // --held-out: also the held-out photo views of the issue-14 protocol (400x300, elevations 20°,
@@ -44,6 +46,7 @@
 #include "coverage/designer.h"
 #include "evaluate/brdf_figures.h"
 #include "evaluate/held_out.h"
+#include "evaluate/material_report.h"
 #include "evaluate/sample_figures.h"
 #include "evaluate/sphere_test.h"
 #include "jobs/study.h"
@@ -79,10 +82,12 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
   return j;
 }
 
-// Mean normalized sample PSNR of each fit over the held-out views of `truth_name` (NaN views,
-// where the truth is black, left out).
-std::vector<double> HeldOut(const std::string& truth_name,
-                            const std::vector<const brdf::Brdf*>& fits) {
+constexpr double kHeldOutElevationsDeg[] = {20, 40, 60, 75};
+
+// Per fit: the mean normalized sample PSNR over the held-out views of `truth_name`, then its
+// mean at each elevation of kHeldOutElevationsDeg (views where the truth is black left out).
+std::vector<std::vector<double>> HeldOut(const std::string& truth_name,
+                                         const std::vector<const brdf::Brdf*>& fits) {
   jobs::StudySettings settings;
   settings.width = 400;
   settings.height = 300;
@@ -90,17 +95,20 @@ std::vector<double> HeldOut(const std::string& truth_name,
   const sim::Scene scene =
       jobs::StudyScene(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml", settings);
   std::vector<double> elevations, phis;
-  for (const double d : {20.0, 40.0, 60.0, 75.0}) elevations.push_back(Radians(d));
+  for (const double d : kHeldOutElevationsDeg) elevations.push_back(Radians(d));
   for (const double d : {0.0, 45.0, 90.0, 180.0}) phis.push_back(Radians(d));
   const auto results =
       evaluate::EvaluateHeldOutEach(scene, fits, evaluate::ElevationViews(elevations, phis));
-  std::vector<double> means;
+  std::vector<std::vector<double>> figures;
   for (const auto& views : results) {
     std::vector<double> psnr;
     for (const auto& v : views) psnr.push_back(v.normalized_sample.psnr_db);
-    means.push_back(evaluate::MeanOfDefined(psnr).mean);
+    figures.push_back({evaluate::MeanOfDefined(psnr).mean});
+    for (const evaluate::ElevationSummary& e : evaluate::SummarizeByElevation(views)) {
+      figures.back().push_back(e.normalized_sample_psnr_db);
+    }
   }
-  return means;
+  return figures;
 }
 
 struct RigVariant {
@@ -137,6 +145,7 @@ int main(int argc, char** argv) {
   prior::PriorBuildOptions build;
   bool loo_design = false, compact = true, rig_changes = false, held_out = false;
   double design_noise = NAN;
+  int design_components = coverage::DesignOptions{}.prior_components;
   prior::PriorFitOptions fit;
   std::string objective = "prior";
   for (int i = 1; i < argc; ++i) {
@@ -151,6 +160,8 @@ int main(int argc, char** argv) {
       build.max_components = std::stoi(next());
     } else if (a == "--noise") {
       build.noise_sigma = std::stod(next());
+    } else if (a == "--design-components") {
+      design_components = std::stoi(next());
     } else if (a == "--design-noise") {
       design_noise = std::stod(next());
     } else if (a == "--correction") {
@@ -199,6 +210,7 @@ int main(int argc, char** argv) {
       coverage::DesignOptions design;
       design.count = count;
       design.prior = &full;
+      design.prior_components = design_components;
       design.objective = objective;
       const coverage::PlanDesign designed = coverage::DesignPlan(variant.rig, design);
       std::vector<geometry::AxisPositions> plan = designed.Positions();
@@ -209,7 +221,8 @@ int main(int argc, char** argv) {
                   "albedo", "project", "albedo");
       if (held_out)
         std::printf("%-30s %8s %8s %8s\n", "held-out (dB):", "prior", "table", "project");
-      std::map<std::string, std::vector<double>> sphere, held;
+      std::map<std::string, std::vector<double>> sphere;
+      std::map<std::string, std::vector<std::vector<double>>> held;  // HeldOut's figures
       std::vector<double> albedo;
       int outside = 0;
       for (const std::string& name : names) {
@@ -273,18 +286,27 @@ int main(int argc, char** argv) {
         if (held_out) {
           const brdf::RusinkiewiczTable true_table(loo.grid, brdf::TabulateBrdf(truth, loo.grid));
           const auto fitted = pm.Model();
-          const std::vector<double> h = HeldOut(name, {fitted.get(), &true_table, &projected});
+          const auto h = HeldOut(name, {fitted.get(), &true_table, &projected});
           held["prior"].push_back(h[0]);
           held["table"].push_back(h[1]);
           held["project"].push_back(h[2]);
-          std::printf("%-30s %8.2f %8.2f %8.2f  (held-out)\n", "", h[0], h[1], h[2]);
+          std::printf("%-30s %8.2f %8.2f %8.2f  (held-out)\n", "", h[0][0], h[1][0], h[2][0]);
         }
         std::fflush(stdout);
       }
-      for (const auto& [what, values] : held) {
-        const evaluate::DefinedMean m = evaluate::MeanOfDefined(values);
-        std::printf("%d positions, held-out %-8s mean %.2f dB (%d materials)\n", count,
-                    what.c_str(), m.mean, m.count);
+      for (const auto& [what, rows] : held) {
+        std::printf("%d positions, held-out %-8s", count, what.c_str());
+        for (std::size_t i = 0; i < rows.front().size(); ++i) {
+          std::vector<double> column;
+          for (const std::vector<double>& r : rows) column.push_back(r[i]);
+          const evaluate::DefinedMean m = evaluate::MeanOfDefined(column);
+          if (i == 0) {
+            std::printf(" mean %.2f dB (%d materials); by elevation", m.mean, m.count);
+          } else {
+            std::printf(" %.0f° %.2f", kHeldOutElevationsDeg[i - 1], m.mean);
+          }
+        }
+        std::printf("\n");
       }
       for (const auto& [rung, values] : sphere) {
         double sum = 0, worst = INFINITY;
