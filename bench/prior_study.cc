@@ -8,7 +8,7 @@
 //
 //   bench_prior_study [--materials a,b,...] [--counts 4,6,8,12] [--components K]
 //                     [--noise SIGMA] [--design-noise SIGMA] [--design-components K]
-//                     [--correction W] [--loo-design]
+//                     [--correction W] [--correction-reach NODES] [--loo-design]
 //                     [--epsilon E] [--cos-floor C] [--bandwidth H]
 //                     [--no-compact] [--held-out]
 //                     [--rig-changes] [--objective prior|coverage]
@@ -166,6 +166,8 @@ int main(int argc, char** argv) {
       design_noise = std::stod(next());
     } else if (a == "--correction") {
       build.correction_weight = std::stod(next());
+    } else if (a == "--correction-reach") {
+      fit.correction_reach = std::stod(next());
     } else if (a == "--bandwidth") {
       fit.bandwidth = std::stod(next());
     } else if (a == "--epsilon") {

@@ -14,6 +14,8 @@ void PriorFitOptions::Validate() const {
               misfit_limit, "positive");
   CheckOption(bandwidth >= 0 && bandwidth < 100, "PriorFitOptions.bandwidth", bandwidth,
               "in [0, 100)");
+  CheckOption(correction_reach >= 0 && correction_reach <= 8, "PriorFitOptions.correction_reach",
+              correction_reach, "in [0, 8]");
 }
 
 namespace {
@@ -135,6 +137,56 @@ ChannelPrior PriorOf(const MeasuredPrior& prior, double h, const Eigen::MatrixXd
   return p;
 }
 
+// Spreads per-node sums over their neighbours: a separable Gaussian of standard deviation
+// `reach` node steps along θh, θd and φd (cut at 3 reach, the grid's edges not wrapped).
+void SpreadOverNodes(const brdf::RusinkiewiczGrid& grid, double reach, std::vector<double>* v) {
+  if (reach <= 0) return;
+  const int radius = static_cast<int>(std::ceil(3 * reach));
+  std::vector<double> kernel(2 * radius + 1);
+  for (int d = -radius; d <= radius; ++d)
+    kernel[d + radius] = std::exp(-0.5 * d * d / (reach * reach));
+  const int n[3] = {grid.theta_h, grid.theta_d, grid.phi_d};
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> out(v->size(), 0.0);
+    for (int ih = 0; ih < grid.theta_h; ++ih) {
+      for (int id = 0; id < grid.theta_d; ++id) {
+        for (int ip = 0; ip < grid.phi_d; ++ip) {
+          const double x = (*v)[grid.Index(ih, id, ip)];
+          if (x == 0) continue;
+          int at[3] = {ih, id, ip};
+          const int centre = at[axis];
+          for (int d = -radius; d <= radius; ++d) {
+            at[axis] = centre + d;
+            if (at[axis] < 0 || at[axis] >= n[axis]) continue;
+            out[grid.Index(at[0], at[1], at[2])] += kernel[d + radius] * x;
+          }
+        }
+      }
+    }
+    *v = std::move(out);
+  }
+}
+
+// Step 2's move of every node: the weighted mean of the residuals of the samples around it
+// (their stencils, spread over `reach` node steps), shrunk by the correction weight.
+std::vector<double> CorrectionOf(const brdf::RusinkiewiczGrid& grid, const Rows& values,
+                                 const Eigen::VectorXd& residual, double reach, double weight) {
+  std::vector<double> num(grid.Cells(), 0.0), den(grid.Cells(), 0.0);
+  for (Eigen::Index i = 0; i < values.Size(); ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double sw = values.w[i] * values.stencils[i].weight[j];
+      num[values.stencils[i].node[j]] += sw * residual[i];
+      den[values.stencils[i].node[j]] += sw;
+    }
+  }
+  SpreadOverNodes(grid, reach, &num);
+  SpreadOverNodes(grid, reach, &den);
+  for (int node = 0; node < grid.Cells(); ++node) {
+    num[node] = den[node] > 0 ? num[node] / (den[node] + weight) : 0.0;
+  }
+  return num;
+}
+
 }  // namespace
 
 PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observation>& observations,
@@ -168,17 +220,19 @@ PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observatio
     result.misfit = std::max(result.misfit, rms);
     result.table[ch].assign(table.data(), table.data() + table.size());
     if (options.correct) {
-      std::vector<double> num(grid.Cells(), 0.0), den(grid.Cells(), 0.0);
-      for (Eigen::Index i = 0; i < n; ++i) {
-        for (int j = 0; j < 8; ++j) {
-          const double sw = w[i] * values.stencils[i].weight[j];
-          num[values.stencils[i].node[j]] += sw * residual[i];
-          den[values.stencils[i].node[j]] += sw;
-        }
-      }
-      for (int node = 0; node < grid.Cells(); ++node) {
-        if (den[node] > 0) {
-          result.table[ch][node] += num[node] / (den[node] + prior.correction_weight);
+      // Spread over the neighbours first, then each node's own samples correct what is left,
+      // so the table still follows the samples where they are.
+      Eigen::VectorXd left = residual;
+      std::vector<double> reaches = {0.0};
+      if (options.correction_reach > 0) reaches.insert(reaches.begin(), options.correction_reach);
+      for (const double reach : reaches) {
+        const std::vector<double> delta =
+            CorrectionOf(grid, values, left, reach, prior.correction_weight);
+        for (int node = 0; node < grid.Cells(); ++node) result.table[ch][node] += delta[node];
+        for (Eigen::Index i = 0; i < n; ++i) {
+          for (int j = 0; j < 8; ++j) {
+            left[i] -= values.stencils[i].weight[j] * delta[values.stencils[i].node[j]];
+          }
         }
       }
     }

@@ -12,7 +12,10 @@
 //     re-solving with the violated bounds as observations until that set stops changing.
 //  2. Where the photos saw the material, the table follows them: each node moves by the
 //     weighted mean of the residuals of the samples around it, shrunk by the prior's
-//     correction weight (a node with little data keeps the prior's value).
+//     correction weight (a node with little data keeps the prior's value). A material's
+//     departure from the components is smooth, so the residuals first move the nodes within a
+//     few steps of the samples (a Gaussian spread, `correction_reach`), then each sample's own
+//     nodes take what is left.
 //  3. Misfit: the weighted RMS residual of step 1 in q (σ is a regularisation weight chosen by
 //     leave-one-material-out, not the photos' noise, so the misfit is judged in q itself). A
 //     material unlike every training material leaves residuals the components cannot explain:
@@ -39,6 +42,10 @@ struct Observation {
 struct PriorFitOptions {
   double misfit_limit = 0.5;  // residual RMS in q above which the material is outside the prior
   bool correct = true;        // step 2
+  // Step 2's reach: the residuals first spread over neighbouring nodes with a Gaussian of this
+  // standard deviation in node steps along each axis of the grid, then each sample's own
+  // stencil takes what is left (0: that second pass alone). docs/prior.md, stop 42.
+  double correction_reach = 1;
   // The prior of step 1. > 0: local to the training channels the data resemble, each a
   // Gaussian of this width in units of the coefficients' spread over the training set (1: the
   // best of 0.2–1.4 left one material out, docs/prior.md); 0: one Gaussian over all of them.

@@ -166,6 +166,41 @@ TEST(MeasuredPrior, CorrectionMovesTheTableTowardsTheSamplesWhereTheyAre) {
       << error_at_samples(with.table) << " vs " << error_at_samples(without.table);
 }
 
+// A photo's patch says something about its neighbourhood too: a material's departure from
+// what the components can represent is smooth, so the correction spread over neighbouring
+// nodes (correction_reach) brings the nodes beside the patch closer to the truth, and leaves
+// the nodes far from it as the components put them.
+TEST(MeasuredPrior, CorrectionReachImprovesTheNodesBesideThePatchOnly) {
+  PriorBuildOptions options = SmallOptions();
+  options.noise_sigma = 1;
+  const MeasuredPrior p = BuildPrior(Set(), options, 42);
+  const brdf::TableValues& truth = Set().tables[42];
+  const std::vector<Observation> seen = Observe(truth, p.grid, 0.3);
+  PriorFitOptions own, reach;
+  own.correction_reach = 0;
+  reach.correction_reach = 1;
+  const PriorFitResult a = FitPrior(p, seen, own), b = FitPrior(p, seen, reach);
+  double beside_own = 0, beside_reach = 0, far_change = 0;
+  for (int ih = 0; ih < p.grid.theta_h; ++ih) {
+    const double theta_h = brdf::NodeAngles(p.grid, ih, 0, 0).theta_h;
+    for (int id = 0; id < p.grid.theta_d; ++id) {
+      for (int ip = 0; ip < p.grid.phi_d; ++ip) {
+        const int n = p.grid.Index(ih, id, ip);
+        for (int c = 0; c < 3; ++c) {
+          if (theta_h > 0.3 && theta_h < 0.5) {
+            beside_own += std::pow(a.table[c][n] - truth[c][n], 2);
+            beside_reach += std::pow(b.table[c][n] - truth[c][n], 2);
+          } else if (theta_h > 0.9) {
+            far_change = std::max(far_change, std::abs(a.table[c][n] - b.table[c][n]));
+          }
+        }
+      }
+    }
+  }
+  EXPECT_LT(beside_reach, 0.9 * beside_own) << beside_reach << " vs " << beside_own;
+  EXPECT_EQ(far_change, 0);
+}
+
 // A black mirror photographed away from its highlight is darker than the photos' noise floor:
 // those directions give bounds, not values. Without them the prior fills the directions with
 // what brighter training materials do; with them the fit stays below every bound it can.
