@@ -49,6 +49,7 @@
 #include "evaluate/material_report.h"
 #include "evaluate/sample_figures.h"
 #include "evaluate/sphere_test.h"
+#include "jobs/material_study.h"
 #include "jobs/study.h"
 #include "prior/build_prior.h"
 #include "reconstruct/fit_ladder.h"
@@ -82,31 +83,33 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
   return j;
 }
 
-constexpr double kHeldOutElevationsDeg[] = {20, 40, 60, 75};
+// Held-out figures of one fit: the mean normalized sample PSNR over the views, and per elevation.
+struct HeldOutFigures {
+  double mean = NAN;
+  std::vector<evaluate::ElevationSummary> by_elevation;
+};
 
-// Per fit: the mean normalized sample PSNR over the held-out views of `truth_name`, then its
-// mean at each elevation of kHeldOutElevationsDeg (views where the truth is black left out).
-std::vector<std::vector<double>> HeldOut(const std::string& truth_name,
-                                         const std::vector<const brdf::Brdf*>& fits) {
+// The held-out views of the studies (evaluate::JudgeOptions' elevations and light azimuths, the
+// study's 400x300) for every fit of the nbrdf material `truth_name`; views where the truth is
+// black are left out of the means.
+std::vector<HeldOutFigures> HeldOut(const std::string& truth_name,
+                                    const std::vector<const brdf::Brdf*>& fits) {
   jobs::StudySettings settings;
-  settings.width = 400;
-  settings.height = 300;
+  settings.width = jobs::MaterialStudyOptions{}.width;
+  settings.height = jobs::MaterialStudyOptions{}.height;
   settings.sample_brdf = "{model: nbrdf, name: " + truth_name + "}";
   const sim::Scene scene =
       jobs::StudyScene(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml", settings);
+  const evaluate::JudgeOptions judge;
   std::vector<double> elevations, phis;
-  for (const double d : kHeldOutElevationsDeg) elevations.push_back(Radians(d));
-  for (const double d : {0.0, 45.0, 90.0, 180.0}) phis.push_back(Radians(d));
-  const auto results =
-      evaluate::EvaluateHeldOutEach(scene, fits, evaluate::ElevationViews(elevations, phis));
-  std::vector<std::vector<double>> figures;
-  for (const auto& views : results) {
+  for (const double d : judge.view_elevations_deg) elevations.push_back(Radians(d));
+  for (const double d : judge.view_phis_deg) phis.push_back(Radians(d));
+  std::vector<HeldOutFigures> figures;
+  for (const auto& views :
+       evaluate::EvaluateHeldOutEach(scene, fits, evaluate::ElevationViews(elevations, phis))) {
     std::vector<double> psnr;
     for (const auto& v : views) psnr.push_back(v.normalized_sample.psnr_db);
-    figures.push_back({evaluate::MeanOfDefined(psnr).mean});
-    for (const evaluate::ElevationSummary& e : evaluate::SummarizeByElevation(views)) {
-      figures.back().push_back(e.normalized_sample_psnr_db);
-    }
+    figures.push_back({evaluate::MeanOfDefined(psnr).mean, evaluate::SummarizeByElevation(views)});
   }
   return figures;
 }
@@ -224,7 +227,7 @@ int main(int argc, char** argv) {
       if (held_out)
         std::printf("%-30s %8s %8s %8s\n", "held-out (dB):", "prior", "table", "project");
       std::map<std::string, std::vector<double>> sphere;
-      std::map<std::string, std::vector<std::vector<double>>> held;  // HeldOut's figures
+      std::map<std::string, std::vector<HeldOutFigures>> held;
       std::vector<double> albedo;
       int outside = 0;
       for (const std::string& name : names) {
@@ -252,8 +255,9 @@ int main(int argc, char** argv) {
         const Judged jp = Judge(truth, *pm.Model());
         // What the representation allows at all: the true table, and its projection on the
         // left-out prior's components (dense data, no regularisation).
-        brdf::TableValues table = brdf::TabulateBrdf(truth, loo.grid);
-        const Judged jt = Judge(truth, brdf::RusinkiewiczTable(loo.grid, table));
+        const brdf::RusinkiewiczTable true_table(loo.grid, brdf::TabulateBrdf(truth, loo.grid));
+        const Judged jt = Judge(truth, true_table);
+        brdf::TableValues table = true_table.values();
         for (std::vector<double>& q : table) {
           Eigen::Map<Eigen::VectorXd> values(q.data(), static_cast<Eigen::Index>(q.size()));
           const Eigen::VectorXd centred = values - loo.mean;
@@ -286,27 +290,28 @@ int main(int argc, char** argv) {
                     pm.fit.value("misfit", NAN), out ? "yes" : "", jt.sphere_db,
                     100 * jt.albedo_signed, jj.sphere_db, 100 * jj.albedo_signed);
         if (held_out) {
-          const brdf::RusinkiewiczTable true_table(loo.grid, brdf::TabulateBrdf(truth, loo.grid));
           const auto fitted = pm.Model();
           const auto h = HeldOut(name, {fitted.get(), &true_table, &projected});
           held["prior"].push_back(h[0]);
           held["table"].push_back(h[1]);
           held["project"].push_back(h[2]);
-          std::printf("%-30s %8.2f %8.2f %8.2f  (held-out)\n", "", h[0][0], h[1][0], h[2][0]);
+          std::printf("%-30s %8.2f %8.2f %8.2f  (held-out)\n", "", h[0].mean, h[1].mean, h[2].mean);
         }
         std::fflush(stdout);
       }
       for (const auto& [what, rows] : held) {
-        std::printf("%d positions, held-out %-8s", count, what.c_str());
-        for (std::size_t i = 0; i < rows.front().size(); ++i) {
+        std::vector<double> means;
+        for (const HeldOutFigures& r : rows) means.push_back(r.mean);
+        const evaluate::DefinedMean m = evaluate::MeanOfDefined(means);
+        std::printf("%d positions, held-out %-8s mean %.2f dB (%d materials); by elevation", count,
+                    what.c_str(), m.mean, m.count);
+        for (std::size_t e = 0; e < rows.front().by_elevation.size(); ++e) {
           std::vector<double> column;
-          for (const std::vector<double>& r : rows) column.push_back(r[i]);
-          const evaluate::DefinedMean m = evaluate::MeanOfDefined(column);
-          if (i == 0) {
-            std::printf(" mean %.2f dB (%d materials); by elevation", m.mean, m.count);
-          } else {
-            std::printf(" %.0f° %.2f", kHeldOutElevationsDeg[i - 1], m.mean);
+          for (const HeldOutFigures& r : rows) {
+            column.push_back(r.by_elevation[e].normalized_sample_psnr_db);
           }
+          std::printf(" %.0f° %.2f", rows.front().by_elevation[e].elevation_deg,
+                      evaluate::MeanOfDefined(column).mean);
         }
         std::printf("\n");
       }

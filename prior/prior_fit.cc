@@ -222,19 +222,21 @@ PriorFitResult FitPrior(const MeasuredPrior& prior, const std::vector<Observatio
     if (options.correct) {
       // Spread over the neighbours first, then each node's own samples correct what is left,
       // so the table still follows the samples where they are.
-      Eigen::VectorXd left = residual;
-      std::vector<double> reaches = {0.0};
-      if (options.correction_reach > 0) reaches.insert(reaches.begin(), options.correction_reach);
-      for (const double reach : reaches) {
-        const std::vector<double> delta =
-            CorrectionOf(grid, values, left, reach, prior.correction_weight);
+      const auto apply = [&](const std::vector<double>& delta) {
         for (int node = 0; node < grid.Cells(); ++node) result.table[ch][node] += delta[node];
+      };
+      Eigen::VectorXd left = residual;
+      if (options.correction_reach > 0) {
+        const std::vector<double> spread =
+            CorrectionOf(grid, values, left, options.correction_reach, prior.correction_weight);
+        apply(spread);
         for (Eigen::Index i = 0; i < n; ++i) {
           for (int j = 0; j < 8; ++j) {
-            left[i] -= values.stencils[i].weight[j] * delta[values.stencils[i].node[j]];
+            left[i] -= values.stencils[i].weight[j] * spread[values.stencils[i].node[j]];
           }
         }
       }
+      apply(CorrectionOf(grid, values, left, 0, prior.correction_weight));
     }
     // The table's valid range (rusinkiewicz_table.h).
     for (double& value : result.table[ch]) value = std::clamp(value, std::log(grid.epsilon), 80.0);
