@@ -10,7 +10,7 @@
 //                     [--noise SIGMA] [--design-noise SIGMA] [--design-components K]
 //                     [--correction W] [--correction-reach NODES] [--loo-design]
 //                     [--epsilon E] [--cos-floor C] [--bandwidth H]
-//                     [--no-compact] [--held-out]
+//                     [--no-compact] [--held-out] [--views]
 //                     [--rig-changes] [--objective prior|coverage]
 // --design-noise: the noise level of the prior the plan is designed under (default: --noise,
 // as the shipped prior serves both), to tell what the plan and the fit each gain.
@@ -21,6 +21,7 @@
 // 40°, 60°, 75° × light azimuths 0°, 45°, 90°, 180°; mean normalized sample PSNR over the views
 // whose truth is not black) for the prior rung, the true table and its projection: where the
 // held-out figure is lost (the plan, the prior, or the table itself). Needs headless GL.
+// --views: --held-out with every view's figure per material (which views the fit loses).
 // --rig-changes: the 6-position design of the default rig and of the rig with one change (a
 // cut-out 1.5 times larger, the light at 0.6 of its distance, an extra axis turning the camera
 // about the normal), each with its leave-one-material-out figures.
@@ -87,6 +88,8 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
 struct HeldOutFigures {
   double mean = NAN;
   std::vector<evaluate::ElevationSummary> by_elevation;
+  std::vector<double> views;  // each view's normalized sample PSNR, in ElevationViews' order
+  std::vector<std::string> view_names;
 };
 
 // The held-out views of the studies (evaluate::JudgeOptions' elevations and light azimuths, the
@@ -108,8 +111,13 @@ std::vector<HeldOutFigures> HeldOut(const std::string& truth_name,
   for (const auto& views :
        evaluate::EvaluateHeldOutEach(scene, fits, evaluate::ElevationViews(elevations, phis))) {
     std::vector<double> psnr;
-    for (const auto& v : views) psnr.push_back(v.normalized_sample.psnr_db);
-    figures.push_back({evaluate::MeanOfDefined(psnr).mean, evaluate::SummarizeByElevation(views)});
+    std::vector<std::string> names;
+    for (const auto& v : views) {
+      psnr.push_back(v.normalized_sample.psnr_db);
+      names.push_back(v.view.name);
+    }
+    figures.push_back(
+        {evaluate::MeanOfDefined(psnr).mean, evaluate::SummarizeByElevation(views), psnr, names});
   }
   return figures;
 }
@@ -146,7 +154,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> names;
   std::vector<int> counts = {6};
   prior::PriorBuildOptions build;
-  bool loo_design = false, compact = true, rig_changes = false, held_out = false;
+  bool loo_design = false, compact = true, rig_changes = false, held_out = false, per_view = false;
   double design_noise = NAN;
   int design_components = coverage::DesignOptions{}.prior_components;
   prior::PriorFitOptions fit;
@@ -181,6 +189,8 @@ int main(int argc, char** argv) {
       loo_design = true;
     } else if (a == "--held-out") {
       held_out = true;
+    } else if (a == "--views") {
+      held_out = per_view = true;
     } else if (a == "--no-compact") {
       compact = false;
     } else if (a == "--objective") {
@@ -296,6 +306,12 @@ int main(int argc, char** argv) {
           held["table"].push_back(h[1]);
           held["project"].push_back(h[2]);
           std::printf("%-30s %8.2f %8.2f %8.2f  (held-out)\n", "", h[0].mean, h[1].mean, h[2].mean);
+          if (per_view) {
+            for (std::size_t v = 0; v < h[0].views.size(); ++v) {
+              std::printf("%-30s %8.2f %8.2f %8.2f  (%s)\n", "", h[0].views[v], h[1].views[v],
+                          h[2].views[v], h[0].view_names[v].c_str());
+            }
+          }
         }
         std::fflush(stdout);
       }
@@ -314,6 +330,21 @@ int main(int argc, char** argv) {
                       evaluate::MeanOfDefined(column).mean);
         }
         std::printf("\n");
+      }
+      if (per_view && !held.empty()) {
+        std::printf(
+            "%d positions, held-out per view (mean over materials): prior, table, project\n",
+            count);
+        const std::vector<HeldOutFigures>& first = held.begin()->second;
+        for (std::size_t v = 0; v < first.front().views.size(); ++v) {
+          std::printf("  %-24s", first.front().view_names[v].c_str());
+          for (const char* what : {"prior", "table", "project"}) {
+            std::vector<double> column;
+            for (const HeldOutFigures& r : held[what]) column.push_back(r.views[v]);
+            std::printf(" %8.2f", evaluate::MeanOfDefined(column).mean);
+          }
+          std::printf("\n");
+        }
       }
       for (const auto& [rung, values] : sphere) {
         double sum = 0, worst = INFINITY;
