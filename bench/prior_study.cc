@@ -88,36 +88,35 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
 struct HeldOutFigures {
   double mean = NAN;
   std::vector<evaluate::ElevationSummary> by_elevation;
-  std::vector<double> views;  // each view's normalized sample PSNR, in ElevationViews' order
-  std::vector<std::string> view_names;
+  std::vector<double> views;  // each view's normalized sample PSNR, in HeldOutViews' order
 };
 
-// The held-out views of the studies (evaluate::JudgeOptions' elevations and light azimuths, the
-// study's 400x300) for every fit of the nbrdf material `truth_name`; views where the truth is
-// black are left out of the means.
+// The held-out views of the studies: evaluate::JudgeOptions' elevations and light azimuths.
+std::vector<evaluate::HeldOutView> HeldOutViews() {
+  const evaluate::JudgeOptions judge;
+  std::vector<double> elevations, phis;
+  for (const double d : judge.view_elevations_deg) elevations.push_back(Radians(d));
+  for (const double d : judge.view_phis_deg) phis.push_back(Radians(d));
+  return evaluate::ElevationViews(elevations, phis);
+}
+
+// `views` at the study's 400x300 for every fit of the nbrdf material `truth_name`; views where
+// the truth is black are left out of the means.
 std::vector<HeldOutFigures> HeldOut(const std::string& truth_name,
-                                    const std::vector<const brdf::Brdf*>& fits) {
+                                    const std::vector<const brdf::Brdf*>& fits,
+                                    const std::vector<evaluate::HeldOutView>& views) {
   jobs::StudySettings settings;
   settings.width = jobs::MaterialStudyOptions{}.width;
   settings.height = jobs::MaterialStudyOptions{}.height;
   settings.sample_brdf = "{model: nbrdf, name: " + truth_name + "}";
   const sim::Scene scene =
       jobs::StudyScene(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml", settings);
-  const evaluate::JudgeOptions judge;
-  std::vector<double> elevations, phis;
-  for (const double d : judge.view_elevations_deg) elevations.push_back(Radians(d));
-  for (const double d : judge.view_phis_deg) phis.push_back(Radians(d));
   std::vector<HeldOutFigures> figures;
-  for (const auto& views :
-       evaluate::EvaluateHeldOutEach(scene, fits, evaluate::ElevationViews(elevations, phis))) {
+  for (const auto& results : evaluate::EvaluateHeldOutEach(scene, fits, views)) {
     std::vector<double> psnr;
-    std::vector<std::string> names;
-    for (const auto& v : views) {
-      psnr.push_back(v.normalized_sample.psnr_db);
-      names.push_back(v.view.name);
-    }
+    for (const auto& r : results) psnr.push_back(r.normalized_sample.psnr_db);
     figures.push_back(
-        {evaluate::MeanOfDefined(psnr).mean, evaluate::SummarizeByElevation(views), psnr, names});
+        {evaluate::MeanOfDefined(psnr).mean, evaluate::SummarizeByElevation(results), psnr});
   }
   return figures;
 }
@@ -218,6 +217,7 @@ int main(int argc, char** argv) {
       names.size(), full.Components(), build.noise_sigma, build.correction_weight,
       build.grid.epsilon, build.grid.cos_floor, fit.bandwidth,
       loo_design ? "left-out" : "all-material", design_build.noise_sigma);
+  const std::vector<evaluate::HeldOutView> held_out_views = HeldOutViews();
   std::vector<RigVariant> variants = {{"default rig", rig}};
   if (rig_changes) variants = RigChanges(rig);
   for (const RigVariant& variant : variants) {
@@ -301,7 +301,7 @@ int main(int argc, char** argv) {
                     100 * jt.albedo_signed, jj.sphere_db, 100 * jj.albedo_signed);
         if (held_out) {
           const auto fitted = pm.Model();
-          const auto h = HeldOut(name, {fitted.get(), &true_table, &projected});
+          const auto h = HeldOut(name, {fitted.get(), &true_table, &projected}, held_out_views);
           held["prior"].push_back(h[0]);
           held["table"].push_back(h[1]);
           held["project"].push_back(h[2]);
@@ -309,7 +309,7 @@ int main(int argc, char** argv) {
           if (per_view) {
             for (std::size_t v = 0; v < h[0].views.size(); ++v) {
               std::printf("%-30s %8.2f %8.2f %8.2f  (%s)\n", "", h[0].views[v], h[1].views[v],
-                          h[2].views[v], h[0].view_names[v].c_str());
+                          h[2].views[v], held_out_views[v].name.c_str());
             }
           }
         }
@@ -335,9 +335,8 @@ int main(int argc, char** argv) {
         std::printf(
             "%d positions, held-out per view (mean over materials): prior, table, project\n",
             count);
-        const std::vector<HeldOutFigures>& first = held.begin()->second;
-        for (std::size_t v = 0; v < first.front().views.size(); ++v) {
-          std::printf("  %-24s", first.front().view_names[v].c_str());
+        for (std::size_t v = 0; v < held_out_views.size(); ++v) {
+          std::printf("  %-24s", held_out_views[v].name.c_str());
           for (const char* what : {"prior", "table", "project"}) {
             std::vector<double> column;
             for (const HeldOutFigures& r : held[what]) column.push_back(r.views[v]);
