@@ -22,8 +22,11 @@
 //
 //   bench_model_ceiling [--set analytic|measured|all] [--materials a,b,...] [--positions N]
 //                       [--rungs ggx,beckmann,microfacet,prior] [--size WxH] [--effects YAML]
-//                       [--exposures t1,t2,t3]
+//                       [--exposures t1,t2,t3] [--held-out]
 //                       [--choice [--validation N]]
+// --held-out: beside each sphere figure the held-out photo views' mean normalized sample PSNR
+// (bench/held_out_figures.h, the studies' 16 views at 400x300): which step loses the held-out
+// figure. Needs headless GL.
 // --validation N adds N validation positions (coverage::DesignOptions::validation) to the plan
 // of --choice and compares the folds alone, the validation photos alone and both (the product).
 #include <unistd.h>
@@ -33,9 +36,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "bench/held_out_figures.h"
 #include "bench/plan_samples.h"
 #include "brdf/material_file.h"
 #include "common/angles.h"
@@ -248,6 +253,8 @@ std::vector<double> CompareChoices(const jobs::StudyMaterial& material, const jo
 struct Cell {
   double sphere_db = NAN, worst_db = NAN;
   double albedo_error = NAN;  // evaluate::WorstAlbedoError, 0–75°, signed
+  double held_out_db = NAN;   // bench::HeldOut's mean (--held-out only)
+  std::shared_ptr<const brdf::Brdf> fit;
 };
 
 Cell Judge(brdf::ModelKind kind, const std::vector<reconstruct::PositionSamples>& positions,
@@ -255,13 +262,27 @@ Cell Judge(brdf::ModelKind kind, const std::vector<reconstruct::PositionSamples>
   std::vector<const reconstruct::PositionSamples*> all;
   for (const auto& p : positions) all.push_back(&p);
   try {
-    const brdf::Material m = reconstruct::FitRung(kind, all, options, false);
-    const evaluate::SphereTestResult r = evaluate::SphereTest(truth, *m.Model());
-    return {r.mean_psnr_db, r.worst_psnr_db, evaluate::WorstAlbedoError(truth, *m.Model())};
+    const auto fit = reconstruct::FitRung(kind, all, options, false).Model();
+    const evaluate::SphereTestResult r = evaluate::SphereTest(truth, *fit);
+    return {r.mean_psnr_db, r.worst_psnr_db, evaluate::WorstAlbedoError(truth, *fit), NAN, fit};
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: %s\n", brdf::ModelKindName(kind), e.what());
     return {};
   }
+}
+
+// Every fitted cell's held-out figure, the truth photographed once per view for all of them.
+void JudgeHeldOut(const std::string& brdf_yaml, std::vector<Cell>* cells) {
+  std::vector<const brdf::Brdf*> fits;
+  std::vector<Cell*> fitted;
+  for (Cell& c : *cells) {
+    if (!c.fit) continue;
+    fits.push_back(c.fit.get());
+    fitted.push_back(&c);
+  }
+  if (fits.empty()) return;
+  const auto figures = bench::HeldOut(brdf_yaml, fits, evaluate::JudgeOptions{}.Views());
+  for (std::size_t i = 0; i < fitted.size(); ++i) fitted[i]->held_out_db = figures[i].mean;
 }
 
 std::vector<std::string> SplitList(const std::string& s) {
@@ -284,7 +305,7 @@ int main(int argc, char** argv) {
   int count = 6;
   std::vector<std::string> rungs = {"ggx", "beckmann", "microfacet", "prior"};
   CaptureSize size;
-  bool choice = false;
+  bool choice = false, held_out = false;
   int validation = 0;
   for (int i = 1; i < argc; ++i) {
     const bool more = i + 1 < argc;
@@ -305,13 +326,15 @@ int main(int argc, char** argv) {
       size.effects = argv[++i];
     } else if (std::strcmp(argv[i], "--choice") == 0) {
       choice = true;
+    } else if (std::strcmp(argv[i], "--held-out") == 0) {
+      held_out = true;
     } else if (std::strcmp(argv[i], "--validation") == 0 && more) {
       validation = std::stoi(argv[++i]);
     } else {
       std::fprintf(stderr,
                    "usage: bench_model_ceiling [--set analytic|measured|all] "
                    "[--materials a,b] [--positions N] [--rungs a,b] [--size WxH] [--effects YAML] "
-                   "[--exposures t1,t2] "
+                   "[--exposures t1,t2] [--held-out] "
                    "[--choice [--validation N]]\n");
       return 2;
     }
@@ -376,7 +399,7 @@ int main(int argc, char** argv) {
   jobs::LeaveOneOutPriors priors;
   constexpr int kData = 4;
   const char* names[kData] = {"dense", "designed", "geometry", "captured"};
-  std::vector<double> sums(kData * kinds.size(), 0.0);
+  std::vector<double> sums(kData * kinds.size(), 0.0), held_out_sums(sums);
   std::vector<int> albedo_within(kData * kinds.size(), 0);
   std::vector<std::string> biases;
   int judged = 0;
@@ -405,14 +428,23 @@ int main(int argc, char** argv) {
         bench::PlanSamples(*truth, scene.rig, plan.positions),
         WithTruth(captured, *truth),
         captured};
+    std::vector<Cell> cells;
+    for (int d = 0; d < kData; ++d) {
+      for (brdf::ModelKind kind : kinds) cells.push_back(Judge(kind, data[d], *truth, options));
+    }
+    if (held_out) JudgeHeldOut(material.brdf_yaml, &cells);
     for (int d = 0; d < kData; ++d) {
       std::printf("| %s | %s |", d == 0 ? material.name.c_str() : "", names[d]);
       for (std::size_t k = 0; k < kinds.size(); ++k) {
-        const Cell c = Judge(kinds[k], data[d], *truth, options);
-        std::printf(" %s (%s) %s%% |", Fixed(c.sphere_db, 1).c_str(), Fixed(c.worst_db, 1).c_str(),
+        const std::size_t i = d * kinds.size() + k;
+        const Cell& c = cells[i];
+        std::printf(" %s (%s) %s%%", Fixed(c.sphere_db, 1).c_str(), Fixed(c.worst_db, 1).c_str(),
                     Fixed(100 * c.albedo_error, 0).c_str());
-        sums[d * kinds.size() + k] += c.sphere_db;
-        albedo_within[d * kinds.size() + k] += std::abs(c.albedo_error) <= 0.1;
+        if (held_out) std::printf(", held-out %s", Fixed(c.held_out_db, 2).c_str());
+        std::printf(" |");
+        sums[i] += c.sphere_db;
+        held_out_sums[i] += c.held_out_db;
+        albedo_within[i] += std::abs(c.albedo_error) <= 0.1;
       }
       std::printf("\n");
       std::fflush(stdout);
@@ -423,9 +455,13 @@ int main(int argc, char** argv) {
   for (int d = 0; d < kData; ++d) {
     std::printf("| **mean of %d** | %s |", judged, names[d]);
     for (std::size_t k = 0; k < kinds.size(); ++k) {
-      std::printf(" %s, albedo within 10 %%: %d |",
-                  Fixed(sums[d * kinds.size() + k] / std::max(judged, 1), 1).c_str(),
-                  albedo_within[d * kinds.size() + k]);
+      const std::size_t i = d * kinds.size() + k;
+      std::printf(" %s, albedo within 10 %%: %d", Fixed(sums[i] / std::max(judged, 1), 1).c_str(),
+                  albedo_within[i]);
+      if (held_out) {
+        std::printf(", held-out %s", Fixed(held_out_sums[i] / std::max(judged, 1), 2).c_str());
+      }
+      std::printf(" |");
     }
     std::printf("\n");
   }

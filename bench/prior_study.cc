@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/held_out_figures.h"
 #include "bench/plan_samples.h"
 #include "brdf/nbrdf.h"
 #include "brdf/nbrdf_library.h"
@@ -82,43 +83,6 @@ Judged Judge(const brdf::Brdf& truth, const brdf::Brdf& fit) {
   j.sphere_db = evaluate::SphereTest(truth, fit).mean_psnr_db;
   j.albedo_signed = evaluate::WorstAlbedoError(truth, fit);
   return j;
-}
-
-// Held-out figures of one fit: the mean normalized sample PSNR over the views, and per elevation.
-struct HeldOutFigures {
-  double mean = NAN;
-  std::vector<evaluate::ElevationSummary> by_elevation;
-  std::vector<double> views;  // each view's normalized sample PSNR, in HeldOutViews' order
-};
-
-// The held-out views of the studies: evaluate::JudgeOptions' elevations and light azimuths.
-std::vector<evaluate::HeldOutView> HeldOutViews() {
-  const evaluate::JudgeOptions judge;
-  std::vector<double> elevations, phis;
-  for (const double d : judge.view_elevations_deg) elevations.push_back(Radians(d));
-  for (const double d : judge.view_phis_deg) phis.push_back(Radians(d));
-  return evaluate::ElevationViews(elevations, phis);
-}
-
-// `views` at the study's 400x300 for every fit of the nbrdf material `truth_name`; views where
-// the truth is black are left out of the means.
-std::vector<HeldOutFigures> HeldOut(const std::string& truth_name,
-                                    const std::vector<const brdf::Brdf*>& fits,
-                                    const std::vector<evaluate::HeldOutView>& views) {
-  jobs::StudySettings settings;
-  settings.width = jobs::MaterialStudyOptions{}.width;
-  settings.height = jobs::MaterialStudyOptions{}.height;
-  settings.sample_brdf = "{model: nbrdf, name: " + truth_name + "}";
-  const sim::Scene scene =
-      jobs::StudyScene(BRDFRIG_SOURCE_DIR "/sim/scenes/default.yaml", settings);
-  std::vector<HeldOutFigures> figures;
-  for (const auto& results : evaluate::EvaluateHeldOutEach(scene, fits, views)) {
-    std::vector<double> psnr;
-    for (const auto& r : results) psnr.push_back(r.normalized_sample.psnr_db);
-    figures.push_back(
-        {evaluate::MeanOfDefined(psnr).mean, evaluate::SummarizeByElevation(results), psnr});
-  }
-  return figures;
 }
 
 struct RigVariant {
@@ -217,7 +181,7 @@ int main(int argc, char** argv) {
       names.size(), full.Components(), build.noise_sigma, build.correction_weight,
       build.grid.epsilon, build.grid.cos_floor, fit.bandwidth,
       loo_design ? "left-out" : "all-material", design_build.noise_sigma);
-  const std::vector<evaluate::HeldOutView> held_out_views = HeldOutViews();
+  const std::vector<evaluate::HeldOutView> held_out_views = evaluate::JudgeOptions{}.Views();
   std::vector<RigVariant> variants = {{"default rig", rig}};
   if (rig_changes) variants = RigChanges(rig);
   for (const RigVariant& variant : variants) {
@@ -237,7 +201,7 @@ int main(int argc, char** argv) {
       if (held_out)
         std::printf("%-30s %8s %8s %8s\n", "held-out (dB):", "prior", "table", "project");
       std::map<std::string, std::vector<double>> sphere;
-      std::map<std::string, std::vector<HeldOutFigures>> held;
+      std::map<std::string, std::vector<bench::HeldOutFigures>> held;
       std::vector<double> albedo;
       int outside = 0;
       for (const std::string& name : names) {
@@ -301,7 +265,8 @@ int main(int argc, char** argv) {
                     100 * jt.albedo_signed, jj.sphere_db, 100 * jj.albedo_signed);
         if (held_out) {
           const auto fitted = pm.Model();
-          const auto h = HeldOut(name, {fitted.get(), &true_table, &projected}, held_out_views);
+          const auto h = bench::HeldOut("{model: nbrdf, name: " + name + "}",
+                                        {fitted.get(), &true_table, &projected}, held_out_views);
           held["prior"].push_back(h[0]);
           held["table"].push_back(h[1]);
           held["project"].push_back(h[2]);
@@ -317,13 +282,13 @@ int main(int argc, char** argv) {
       }
       for (const auto& [what, rows] : held) {
         std::vector<double> means;
-        for (const HeldOutFigures& r : rows) means.push_back(r.mean);
+        for (const bench::HeldOutFigures& r : rows) means.push_back(r.mean);
         const evaluate::DefinedMean m = evaluate::MeanOfDefined(means);
         std::printf("%d positions, held-out %-8s mean %.2f dB (%d materials); by elevation", count,
                     what.c_str(), m.mean, m.count);
         for (std::size_t e = 0; e < rows.front().by_elevation.size(); ++e) {
           std::vector<double> column;
-          for (const HeldOutFigures& r : rows) {
+          for (const bench::HeldOutFigures& r : rows) {
             column.push_back(r.by_elevation[e].normalized_sample_psnr_db);
           }
           std::printf(" %.0f° %.2f", rows.front().by_elevation[e].elevation_deg,
@@ -339,7 +304,7 @@ int main(int argc, char** argv) {
           std::printf("  %-24s", held_out_views[v].name.c_str());
           for (const char* what : {"prior", "table", "project"}) {
             std::vector<double> column;
-            for (const HeldOutFigures& r : held[what]) column.push_back(r.views[v]);
+            for (const bench::HeldOutFigures& r : held[what]) column.push_back(r.views[v]);
             std::printf(" %8.2f", evaluate::MeanOfDefined(column).mean);
           }
           std::printf("\n");

@@ -85,15 +85,18 @@ void JudgeOptions::Validate() const {
   brdf.Validate();
 }
 
+std::vector<HeldOutView> JudgeOptions::Views() const {
+  std::vector<double> elevations, phis;
+  for (double d : view_elevations_deg) elevations.push_back(Radians(d));
+  for (double d : view_phis_deg) phis.push_back(Radians(d));
+  return ElevationViews(elevations, phis);
+}
+
 MaterialFigures JudgeFit(const sim::Scene& scene, const brdf::Brdf& fitted,
                          const JudgeOptions& options) {
   options.Validate();
   MaterialFigures figures = JudgeBrdf(*scene.sample.brdf, fitted, options.sphere, options.brdf);
-  std::vector<double> elevations, phis;
-  for (double d : options.view_elevations_deg) elevations.push_back(Radians(d));
-  for (double d : options.view_phis_deg) phis.push_back(Radians(d));
-  figures.held_out =
-      EvaluateHeldOut(scene, fitted, ElevationViews(elevations, phis), options.held_out);
+  figures.held_out = EvaluateHeldOut(scene, fitted, options.Views(), options.held_out);
   return figures;
 }
 
@@ -105,11 +108,8 @@ std::vector<MaterialFigures> JudgeFitEach(const sim::Scene& scene,
   for (const brdf::Brdf* f : fitted) {
     figures.push_back(JudgeBrdf(*scene.sample.brdf, *f, options.sphere, options.brdf));
   }
-  std::vector<double> elevations, phis;
-  for (double d : options.view_elevations_deg) elevations.push_back(Radians(d));
-  for (double d : options.view_phis_deg) phis.push_back(Radians(d));
   std::vector<std::vector<HeldOutResult>> held =
-      EvaluateHeldOutEach(scene, fitted, ElevationViews(elevations, phis), options.held_out);
+      EvaluateHeldOutEach(scene, fitted, options.Views(), options.held_out);
   for (std::size_t i = 0; i < fitted.size(); ++i) figures[i].held_out = std::move(held[i]);
   return figures;
 }

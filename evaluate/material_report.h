@@ -41,6 +41,8 @@ struct JudgeOptions {
   SphereTestOptions sphere;
   BrdfFiguresOptions brdf;
   void Validate() const;  // throws OptionsError
+  // The held-out views: every elevation × light azimuth (ElevationViews), elevation-major.
+  std::vector<HeldOutView> Views() const;
 };
 
 // Every figure of `fitted` against the scene's sample (its truth). Held-out views need a GL
