@@ -148,11 +148,8 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
                                          const DirectionSampleOptions& options) {
   sample_options.Validate();
   options.Validate();
-  const double margin =
-      sample_options.edge_margin * std::min(target.cutout_width, target.cutout_height);
-  const double half_w = target.cutout_width / 2 - margin;
-  const double half_h = target.cutout_height / 2 - margin;
-  const PlaneView::Box box = view.PixelBox(half_w, half_h);
+  const SampleRegion region = SampleRegionOf(view, target, sample_options);
+  const PlaneView::Box& box = region.box;
   const geometry::Vec3& camera = view.camera_centre();
   const int b = options.max_block_px;
   const int blocks_x = std::max(0, (box.x1 - box.x0 + b - 1) / b);
@@ -171,7 +168,7 @@ DirectionSamples ExtractDirectionSamples(const cv::Mat& radiance, const cv::Mat&
         for (int y = y0; y < std::min(y0 + b, box.y1); ++y) {
           for (int x = x0; x < std::min(x0 + b, box.x1); ++x) {
             const auto p = view.PointAt(x, y);
-            if (!p || std::abs(p->x()) > half_w || std::abs(p->y()) > half_h) continue;
+            if (!p || !region.Contains(*p)) continue;
             if (!valid.at<uchar>(y, x)) continue;
             const double e = PointLightIrradiance(light, *p);
             const cv::Vec3f value = radiance.at<cv::Vec3f>(y, x);

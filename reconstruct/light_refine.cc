@@ -66,11 +66,8 @@ LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const
   out.position = start_light;
   if (!options.enabled || start_fit.flat) return out;
 
-  const double margin =
-      sample_options.edge_margin * std::min(target.cutout_width, target.cutout_height);
-  const double half_w = target.cutout_width / 2 - margin;
-  const double half_h = target.cutout_height / 2 - margin;
-  const PlaneView::Box box = view.PixelBox(half_w, half_h);
+  const SampleRegion region = SampleRegionOf(view, target, sample_options);
+  const PlaneView::Box& box = region.box;
   const long area = static_cast<long>(box.x1 - box.x0) * (box.y1 - box.y0);
   const int stride =
       std::max(1, static_cast<int>(std::sqrt(static_cast<double>(area) / options.max_pixels)));
@@ -79,7 +76,7 @@ LightRefinement RefineLight(const cv::Mat& radiance, const cv::Mat& valid, const
     for (int x = box.x0; x < box.x1; x += stride) {
       if (!valid.at<uchar>(y, x)) continue;
       const auto p = view.PointAt(x, y);
-      if (!p || std::abs(p->x()) > half_w || std::abs(p->y()) > half_h) continue;
+      if (!p || !region.Contains(*p)) continue;
       const cv::Vec3f value = radiance.at<cv::Vec3f>(y, x);
       PixelRecord record{*p, (view.camera_centre() - *p).normalized(), {}};
       bool ok = true;

@@ -39,7 +39,8 @@ struct BrdfSamples {
 
 // The part of the cut-out whose pixels become samples (the cut-out less `edge_margin` along its
 // border, |x| <= half_w, |y| <= half_h on the plane) and the pixel box covering it. Shared by
-// the sample extraction and the photo prediction so both use the very same pixels.
+// the sample extraction, the light refinement and the photo prediction so all use the very
+// same pixels.
 struct SampleRegion {
   double half_w = 0, half_h = 0;
   PlaneView::Box box;
