@@ -39,8 +39,8 @@ struct BrdfSamples {
 
 // The part of the cut-out whose pixels become samples (the cut-out less `edge_margin` along its
 // border, |x| <= half_w, |y| <= half_h on the plane) and the pixel box covering it. Shared by
-// the sample extraction, the light refinement and the photo prediction so all use the very
-// same pixels.
+// the slice samples, the direction samples, the light refinement and the photo prediction so
+// all use the very same pixels (tests/reconstruct/sample_region_test).
 struct SampleRegion {
   double half_w = 0, half_h = 0;
   PlaneView::Box box;
