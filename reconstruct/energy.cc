@@ -1,9 +1,9 @@
 #include "reconstruct/energy.h"
-#include "common/angles.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "common/angles.h"
 #include "common/format.h"
 
 namespace brdfrig::reconstruct {
@@ -86,6 +86,47 @@ double LimitMicrofacetEnergy(brdf::MicrofacetModelParams* params, std::string* n
              Fixed(limit, 3) + " was lowered to it";
   }
   return scale;
+}
+
+double LimitTableEnergy(const brdf::RusinkiewiczGrid& grid, brdf::TableValues* table,
+                        double margin) {
+  double largest = 1;
+  // Albedo at one angle integrates over others, so a few rounds.
+  for (int round = 0; round < 4; ++round) {
+    const brdf::RusinkiewiczTable whole(grid, *table);
+    std::vector<double> excess(18, 1.0);
+    bool over = false;
+    for (int i = 0; i < 18; ++i) {
+      const double a = HalfVectorAlbedo(whole, Radians(5.0 * i)).maxCoeff();
+      excess[i] = std::max(1.0, a / (1 - margin));
+      over = over || excess[i] > 1;
+    }
+    if (!over) break;
+    const auto scale_at = [&](double theta) {
+      const double u = std::clamp(Degrees(theta) / 5, 0.0, 17.0);
+      const int i = std::min(static_cast<int>(u), 16);
+      return excess[i] + (u - i) * (excess[i + 1] - excess[i]);
+    };
+    for (int ih = 0; ih < grid.theta_h; ++ih) {
+      for (int id = 0; id < grid.theta_d; ++id) {
+        for (int ip = 0; ip < grid.phi_d; ++ip) {
+          brdf::Vec3 l, v;
+          brdf::FromHalfDiffAngles(brdf::NodeAngles(grid, ih, id, ip), &l, &v);
+          const double theta_i = std::acos(std::clamp(l.z(), 0.0, 1.0));
+          const double theta_o = std::acos(std::clamp(v.z(), 0.0, 1.0));
+          const double s = std::max(scale_at(theta_i), scale_at(theta_o));
+          if (s <= 1) continue;
+          const double f = 1.02 * s;  // 2 % more than the excess: the rounds converge from below
+          largest = std::max(largest, f);
+          for (auto& channel : *table) {
+            double& q = channel[grid.Index(ih, id, ip)];
+            q = std::log((std::exp(q) - grid.epsilon) / f + grid.epsilon);
+          }
+        }
+      }
+    }
+  }
+  return largest;
 }
 
 }  // namespace brdfrig::reconstruct

@@ -4,60 +4,11 @@
 #include <cmath>
 #include <functional>
 
-#include "common/angles.h"
 #include "common/error.h"
 #include "reconstruct/energy.h"
 
 namespace brdfrig::reconstruct {
 namespace {
-
-constexpr double kMargin = 1e-3;
-
-// A table whose albedo exceeds 1 somewhere (the prior extrapolates towards grazing incidence,
-// where neither the photos nor the training tables constrain it much) is scaled down where it
-// does: each node by the excess at its own incidence and exitance angles (the larger of the
-// two, so the table stays reciprocal), interpolated over the albedo's 5° steps. Albedo at one
-// angle integrates over others, so a few rounds. Returns the largest scale applied (1: none).
-double LimitTableEnergy(brdf::Material* m) {
-  const brdf::RusinkiewiczGrid& grid = m->table_grid;
-  double largest = 1;
-  for (int round = 0; round < 4; ++round) {
-    const brdf::RusinkiewiczTable table(grid, m->table);
-    std::vector<double> excess(18, 1.0);
-    bool over = false;
-    for (int i = 0; i < 18; ++i) {
-      const double a = HalfVectorAlbedo(table, Radians(5.0 * i)).maxCoeff();
-      excess[i] = std::max(1.0, a / (1 - kMargin));
-      over = over || excess[i] > 1;
-    }
-    if (!over) break;
-    const auto scale_at = [&](double theta) {
-      const double u = std::clamp(Degrees(theta) / 5, 0.0, 17.0);
-      const int i = std::min(static_cast<int>(u), 16);
-      return excess[i] + (u - i) * (excess[i + 1] - excess[i]);
-    };
-    for (int ih = 0; ih < grid.theta_h; ++ih) {
-      for (int id = 0; id < grid.theta_d; ++id) {
-        for (int ip = 0; ip < grid.phi_d; ++ip) {
-          brdf::Vec3 l, v;
-          brdf::FromHalfDiffAngles(brdf::NodeAngles(grid, ih, id, ip), &l, &v);
-          const double theta_i = std::acos(std::clamp(l.z(), 0.0, 1.0));
-          const double theta_o = std::acos(std::clamp(v.z(), 0.0, 1.0));
-          // 2 % more than the excess: the rounds converge from below.
-          const double s = std::max(scale_at(theta_i), scale_at(theta_o));
-          if (s <= 1) continue;
-          const double f = 1.02 * s;
-          largest = std::max(largest, f);
-          for (auto& channel : m->table) {
-            double& q = channel[grid.Index(ih, id, ip)];
-            q = std::log((std::exp(q) - grid.epsilon) / f + grid.epsilon);
-          }
-        }
-      }
-    }
-  }
-  return largest;
-}
 
 // The training materials the local prior leaned on most (their share averaged over the three
 // channels), largest first: what the fit says the sample is like.
@@ -127,7 +78,7 @@ brdf::Material FitPriorRung(const std::vector<const PositionSamples*>& positions
                        " (RMS of ln(f cos cos + eps)): the material lies outside what the prior "
                        "has seen, so this rung is not chosen by default");
   }
-  const double scale = LimitTableEnergy(&material);
+  const double scale = LimitTableEnergy(material.table_grid, &material.table);
   material.fit["energy_scale"] = scale;
   if (scale > 1) {
     warnings.push_back(
