@@ -44,11 +44,22 @@ std::vector<DirectionSample> Pool(const std::vector<const PositionSamples*>& pos
   return all;
 }
 
+// Whether a photo says anything a rung can be scored on: a value, or a bound.
+bool Scorable(const PositionSamples& p) {
+  return !p.directions.samples.empty() || !p.directions.bounds.empty();
+}
+
 double Score(const brdf::Material& material, const PositionSamples& held_out,
              const MicrofacetFitOptions& options) {
   const auto& samples = held_out.directions.samples;
+  const auto& bounds = held_out.directions.bounds;
+  // The photo's blocks below the noise floor count as what they are, upper bounds: a rung that
+  // is bright where the photo saw nothing is contradicted by it (a black mirror's compact fits
+  // put a lobe where the photo is dark). eps from the values, or from the bounds when the photo
+  // holds nothing else.
   const double score =
-      LogLossRms(*material.Model(), samples, LossEpsilon(samples, options.epsilon_fraction));
+      LogLossRms(*material.Model(), samples,
+                 LossEpsilon(samples.empty() ? bounds : samples, options.epsilon_fraction), bounds);
   return std::isfinite(score) ? score : kInf;
 }
 
@@ -181,13 +192,16 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
   // slices share (pooled incidence angles, seed_constrained's diffuse floor and energy scale)
   // would otherwise carry the held-out photo into its own prediction, and score the slice
   // rungs better than the rungs that are refitted honestly.
-  // A position with no direction sample (all of it below the noise floor) cannot be held out:
-  // there is nothing to score a rung on. It still trains every fold.
+  // A position wholly below the noise floor is held out too: its bounds say where the material
+  // is dark, which a rung may contradict. Folds need two positions with values, so that every
+  // fold still has one to fit.
   std::vector<int> held_out;
+  int with_values = 0;
   for (int i = 0; i < static_cast<int>(fit_positions.size()); ++i) {
-    if (!fit_positions[i].directions.samples.empty()) held_out.push_back(i);
+    if (Scorable(fit_positions[i])) held_out.push_back(i);
+    if (!fit_positions[i].directions.samples.empty()) ++with_values;
   }
-  const bool validate = options.validate && options.model.empty() && held_out.size() >= 2;
+  const bool validate = options.validate && options.model.empty() && with_values >= 2;
   const int folds = validate ? static_cast<int>(held_out.size()) : 0;
   std::vector<std::vector<const PositionSamples*>> train(folds);
   for (int f = 0; f < folds; ++f) {
@@ -280,7 +294,7 @@ LadderResult FitLadder(const std::vector<PositionSamples>& fit_positions,
   }
   for (RungResult& rung : result.rungs) {
     for (const PositionSamples& v : validation_positions) {
-      if (v.directions.samples.empty()) continue;  // below the noise floor: nothing to score
+      if (!Scorable(v)) continue;  // an empty photo: nothing to score
       rung.validation_scores.push_back(rung.fitted ? Score(rung.material, v, options.microfacet)
                                                    : kInf);
     }

@@ -4,8 +4,10 @@
 //
 // Scores use the fits' loss (reconstruct/log_loss.h, eps from the held-out data): the
 // weighted RMS of ln(eps + f_model·cos_i) − ln(eps + f_data·cos_i) over a held-out position's
-// direction samples. Leave-one-position-out (LOPO): each fit position in turn is left out, the
-// rung is fitted to the others and scored on it; the rung's score is the mean over folds.
+// direction samples, and over its blocks below the noise floor where the rung is brighter than
+// them (upper bounds; a photo with only those is held out too, while two photos have values).
+// Leave-one-position-out (LOPO): each fit position in turn is left out, the rung is fitted to
+// the others and scored on it; the rung's score is the mean over folds.
 // Validation positions (the plan's, when the capture has them) are never fitted; every rung
 // fitted to all fit positions is scored on them, and those scores count with the folds'.
 // A fold whose fit fails scores +inf (the rung cannot be fitted from that subset).

@@ -38,20 +38,23 @@ Epsilon LossEpsilon(const std::vector<DirectionSample>& samples, double fraction
 }
 
 double LogLossRms(const brdf::Brdf& model, const std::vector<DirectionSample>& samples,
-                  const Epsilon& eps) {
+                  const Epsilon& eps, const std::vector<DirectionSample>& bounds) {
   const brdf::Vec3 n = brdf::Vec3::UnitZ();
   double sum = 0, weight = 0;
-  for (const DirectionSample& s : samples) {
+  const auto add = [&](const DirectionSample& s, bool upper_bound) {
     const double w = LossWeight(s);
-    if (!(w > 0)) continue;
+    if (!(w > 0)) return;
     const brdf::Rgb f = model.Eval(s.l, s.v, n);
     for (int c = 0; c < 3; ++c) {
-      const double r = std::log(eps[c] + std::max(f[c], 0.0) * s.l.z()) -
-                       std::log(eps[c] + std::max(s.f[c], 0.0) * s.l.z());
+      double r = std::log(eps[c] + std::max(f[c], 0.0) * s.l.z()) -
+                 std::log(eps[c] + std::max(s.f[c], 0.0) * s.l.z());
+      if (upper_bound) r = std::max(r, 0.0);
       sum += w * r * r;
     }
     weight += 3 * w;
-  }
+  };
+  for (const DirectionSample& s : samples) add(s, false);
+  for (const DirectionSample& s : bounds) add(s, true);
   return weight > 0 ? std::sqrt(sum / weight) : std::numeric_limits<double>::quiet_NaN();
 }
 

@@ -31,8 +31,12 @@ double WeightedQuantile(std::vector<std::pair<double, double>> value_weight, dou
 Epsilon LossEpsilon(const std::vector<DirectionSample>& samples, double fraction = 0.01);
 
 // Weighted RMS of r over samples and channels (the validation score); NaN without samples.
+// `bounds`: blocks darker than the photo's noise floor (DirectionSamples::bounds), each saying
+// the material is no brighter than its f there. A bound adds r where the model lies above it
+// and 0 where it does not, with the same weight as a sample: the photo contradicts a model that
+// is bright where it saw nothing, and agrees with any model that is dark there.
 double LogLossRms(const brdf::Brdf& model, const std::vector<DirectionSample>& samples,
-                  const Epsilon& eps);
+                  const Epsilon& eps, const std::vector<DirectionSample>& bounds = {});
 
 // The weight of one sample (cos_i · cos_o · pixels).
 inline double LossWeight(const DirectionSample& s) { return s.l.z() * s.v.z() * s.weight; }

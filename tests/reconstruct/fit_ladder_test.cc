@@ -1,6 +1,6 @@
 // The ladder: energy never created, one-sided data flagged, the seed_constrained rung's shared
-// floor, validation positions never fitted, and validation choosing a microfacet rung where
-// the truth is one.
+// floor, validation positions never fitted, validation choosing a microfacet rung where the
+// truth is one, and photos below the noise floor scored on their bounds.
 #include "reconstruct/fit_ladder.h"
 
 #include <gtest/gtest.h>
@@ -266,6 +266,56 @@ TEST(FitLadderTest, APositionWithNoDirectionSampleIsNotAFold) {
     EXPECT_TRUE(std::isfinite(rung.score)) << brdf::ModelKindName(rung.kind);
   }
   EXPECT_NE(ladder.rungs[ladder.chosen].kind, brdf::ModelKind::kSeed);
+}
+
+// A photo wholly below the noise floor still says where the material is dark: it is held out
+// like the others and each rung is scored on its bounds, a rung brighter than a bound
+// contradicted by it.
+TEST(FitLadderTest, APhotoWhollyBelowTheNoiseFloorIsAFoldScoredOnItsBounds) {
+  const brdf::MicrofacetModel truth(GgxTruth());
+  std::vector<PositionSamples> positions = Positions(truth, DesignedPatches());
+  // The photo saw at most a tenth of what the material reflects there.
+  DirectionSamples& dark = positions[4].directions;
+  dark.bounds = dark.samples;
+  for (DirectionSample& s : dark.bounds) {
+    for (double& f : s.f) f /= 10;
+  }
+  dark.samples.clear();
+  const LadderResult ladder = FitLadder(positions, {}, {});
+  ASSERT_GE(ladder.chosen, 0);
+  std::vector<const PositionSamples*> rest;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    if (i != 4) rest.push_back(&positions[i]);
+  }
+  const Epsilon eps = LossEpsilon(dark.bounds, MicrofacetFitOptions{}.epsilon_fraction);
+  const RungResult& seed = ladder.rungs[0];
+  ASSERT_EQ(seed.kind, brdf::ModelKind::kSeed);
+  ASSERT_EQ(seed.fold_positions, (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  const brdf::Material refit = FitRung(brdf::ModelKind::kSeed, rest, {}, false);
+  EXPECT_DOUBLE_EQ(seed.fold_scores[4], LogLossRms(*refit.Model(), {}, eps, dark.bounds));
+  for (const RungResult& rung : ladder.rungs) {
+    if (!rung.fitted) continue;
+    // Every rung fitted to the other photos is brighter than these bounds: about ln 10 off.
+    EXPECT_GT(rung.fold_scores[4], 1) << brdf::ModelKindName(rung.kind);
+    EXPECT_TRUE(std::isfinite(rung.score)) << brdf::ModelKindName(rung.kind);
+  }
+}
+
+// A fold must keep a photo with values to fit: with one such photo there are no folds (the
+// choice falls back on the fits' own residuals), however many photos hold only bounds.
+TEST(FitLadderTest, FoldsNeedTwoPhotosWithValues) {
+  const brdf::MicrofacetModel truth(GgxTruth());
+  std::vector<PositionSamples> positions = Positions(truth, DesignedPatches());
+  for (std::size_t i = 1; i < positions.size(); ++i) {
+    DirectionSamples& d = positions[i].directions;
+    d.bounds = d.samples;
+    d.samples.clear();
+  }
+  const LadderResult ladder = FitLadder(positions, {}, {});
+  ASSERT_GE(ladder.chosen, 0);
+  for (const RungResult& rung : ladder.rungs) {
+    EXPECT_TRUE(rung.fold_positions.empty()) << brdf::ModelKindName(rung.kind);
+  }
 }
 
 }  // namespace
