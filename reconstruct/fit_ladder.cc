@@ -380,7 +380,8 @@ nlohmann::json LadderResult::Json() const {
         {"score", finite(r.score)},
         {"score_protocol", r.fold_scores.empty() && r.validation_scores.empty()
                                ? "fit residual (nothing held out)"
-                               : "mean held-out weighted RMS of ln(eps + f cos_i) residuals"},
+                               : "mean held-out weighted RMS of ln(eps + f cos_i) residuals "
+                                 "(blocks below the noise floor: only where the rung is brighter)"},
         {"lopo_folds", folds},
         {"validation_scores", validation},
         {"size_bytes", r.size_bytes},

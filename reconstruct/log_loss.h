@@ -30,7 +30,8 @@ double WeightedQuantile(std::vector<std::pair<double, double>> value_weight, dou
 // largest value, or 1e-12).
 Epsilon LossEpsilon(const std::vector<DirectionSample>& samples, double fraction = 0.01);
 
-// Weighted RMS of r over samples and channels (the validation score); NaN without samples.
+// Weighted RMS of r over samples and channels (the validation score); NaN without samples or
+// bounds.
 // `bounds`: blocks darker than the photo's noise floor (DirectionSamples::bounds), each saying
 // the material is no brighter than its f there. A bound adds r where the model lies above it
 // and 0 where it does not, with the same weight as a sample: the photo contradicts a model that
